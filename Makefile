@@ -1,0 +1,60 @@
+# Development entry points. Needs only python3 (with venv and headers), gcc, cmake,
+# make and git: ROS 2 itself comes from PyPI into .venv (see requirements/ros.txt).
+#   make test   run the test suite (PYTEST_ARGS='-k foo' to narrow it)
+#   make demo   run tools/demo.py
+#   make clean  remove the venv and the test workspace's build results
+
+PYTHON ?= python3
+PYTEST_ARGS ?=
+VENV := .venv
+VPY := $(VENV)/bin/python
+
+# The package is installed non-editable, so tests see what users get (entry points,
+# templates as package data); these files decide when to reinstall it.
+PKG_FILES := $(shell find colcon_robmosys templates -type f ! -name '*.pyc' 2>/dev/null) \
+             $(wildcard setup.cfg setup.py)
+
+# Running from a clone of CI: no cache directory left behind.
+ifeq ($(CI),true)
+PYTEST_FLAGS := -p no:cacheprovider
+endif
+
+.PHONY: venv demo test clean
+
+venv: $(VENV)/.stamp-package
+
+# The ROS 2 prefix: requirements, then the fix-ups the ros-* wheels need.
+$(VENV)/.stamp-ros: requirements/ros.txt tools/bootstrap_ros_wheels.py
+	@test -x $(VPY) || $(PYTHON) -m venv $(VENV) || { \
+	  echo "error: '$(PYTHON) -m venv' failed (on Debian/Ubuntu: apt-get install python3-venv)"; \
+	  exit 1; }
+	$(VPY) -m pip install --upgrade pip
+	$(VPY) -m pip install -r requirements/ros.txt
+	$(VPY) tools/bootstrap_ros_wheels.py
+	@touch $@
+
+# setuptools builds in the source tree and packs whatever build/lib holds, so a
+# file removed from the sources would live on in the wheel: start from nothing,
+# and leave nothing behind.
+SETUPTOOLS_LEFTOVERS := build/lib build/bdist.* *.egg-info
+$(VENV)/.stamp-package: $(VENV)/.stamp-ros $(PKG_FILES)
+	@if [ -f setup.cfg ]; then \
+	  rm -rf $(SETUPTOOLS_LEFTOVERS) && \
+	  $(VPY) -m pip install --no-deps --force-reinstall . && \
+	  rm -rf $(SETUPTOOLS_LEFTOVERS) && { rmdir build 2>/dev/null || true; }; \
+	else \
+	  echo "setup.cfg is missing: colcon-robmosys is not installed into $(VENV)"; \
+	fi
+	@touch $@
+
+demo: venv
+	$(VPY) tools/demo.py
+
+# bin/pytest rather than 'python -m pytest': -m puts the working directory on
+# sys.path, and the source tree would shadow the installed package.
+test: venv
+	$(VENV)/bin/pytest tests -ra $(PYTEST_FLAGS) $(PYTEST_ARGS)
+
+clean:
+	rm -rf $(VENV) $(SETUPTOOLS_LEFTOVERS) test_workspace/build test_workspace/install \
+	  test_workspace/log

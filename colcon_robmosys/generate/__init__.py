@@ -1,0 +1,130 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""Generate the files of a package plan, and keep the user's files safe."""
+
+from __future__ import annotations
+
+import ast
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
+from colcon_robmosys.generate.render import render
+from colcon_robmosys.generate.writer import (
+    create_user_file, remove_generated, write_generated)
+from colcon_robmosys.ros2.plan import PackagePlan, UserFile
+
+#: Lists, inside a generated package, the files the generation wrote.
+MANIFEST = '.robmosys-generated'
+
+
+@dataclass
+class GenerationReport:
+    """What a generation did."""
+
+    written: list[Path] = field(default_factory=list)
+    unchanged: list[Path] = field(default_factory=list)
+    removed: list[Path] = field(default_factory=list)
+    created_user_files: list[Path] = field(default_factory=list)
+
+
+def user_file_problems(user_file: UserFile, path: Path) -> list[Diagnostic]:
+    """Check that the user's code defines what the model asks of it."""
+    try:
+        text = path.read_text(encoding='utf-8')
+    except (OSError, UnicodeDecodeError) as exc:
+        return [Diagnostic(Location(str(path)),
+                           f'cannot read the implementation file: {exc}')]
+    if not path.suffix == '.py':
+        return []
+    try:
+        tree = ast.parse(text, filename=str(path))
+    except SyntaxError as exc:
+        return [Diagnostic(Location(str(path), exc.lineno or 0,
+                                    exc.offset or 0),
+                           f'Python syntax error: {exc.msg}')]
+    classes = [n for n in tree.body if isinstance(n, ast.ClassDef) and
+               n.name == user_file.required_class]
+    skeleton = f'the skeleton {user_file.skeleton_path} of the package shows ' \
+        'what the model asks for'
+    if not classes:
+        return [Diagnostic(Location(str(path), 1, 1),
+                           f"no class '{user_file.required_class}' in the "
+                           f'implementation file; {skeleton}')]
+    cls = classes[0]
+    defined = {n.name for n in cls.body
+               if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef))}
+    return [Diagnostic(Location(str(path), cls.lineno, cls.col_offset + 1),
+                       f"class '{cls.name}' lacks the function '{name}' of "
+                       f'the model; {skeleton}')
+            for name in user_file.required_functions if name not in defined]
+
+
+def create_missing_user_files(plan: PackagePlan) -> list[Path]:
+    """Create the implementation files the user lacks, from the model.
+
+    Existing files are never touched.
+    """
+    created = []
+    for user_file in plan.user_files:
+        path = plan.model_dir / user_file.source_path
+        text = render(user_file.template, user_file.context)
+        if create_user_file(path, text.encode('utf-8')):
+            created.append(path)
+    return created
+
+
+def generate_package(plan: PackagePlan, out_dir: Path) -> GenerationReport:
+    """Write the package of a plan into out_dir.
+
+    Everything is rendered and checked before the first file is written, so
+    that a problem leaves the previous output as it was.
+
+    :raises RobmosysError: if the user's code is missing or incomplete
+    """
+    problems: list[Diagnostic] = []
+    outputs: dict[str, tuple[bytes, bool]] = {}
+    for spec in plan.files:
+        outputs[spec.path] = (render(spec.template, spec.context)
+                              .encode('utf-8'), spec.executable)
+    copies = set()
+    for user_file in plan.user_files:
+        source = plan.model_dir / user_file.source_path
+        if not source.is_file():
+            problems.append(Diagnostic(
+                Location(str(source)),
+                'the implementation file is missing: run '
+                f"'colcon robmosys-generate --packages-select {plan.name}' "
+                'to create it from the model, then fill it in'))
+            continue
+        problems += user_file_problems(user_file, source)
+        outputs[user_file.package_path] = (source.read_bytes(), False)
+        copies.add(user_file.package_path)
+    if problems:
+        raise RobmosysError(problems)
+
+    report = GenerationReport()
+    manifest_path = out_dir / MANIFEST
+    try:
+        previous = {line for line in manifest_path.read_text().split('\n')
+                    if line and not line.startswith('#')}
+    except FileNotFoundError:
+        previous = set()
+    for relative, (data, executable) in sorted(outputs.items()):
+        path = out_dir / relative
+        owned = relative in copies or relative in previous
+        if write_generated(path, data, executable=executable, owned=owned):
+            report.written.append(path)
+        else:
+            report.unchanged.append(path)
+    for relative in sorted(previous - set(outputs)):
+        if remove_generated(out_dir / relative, out_dir):
+            report.removed.append(out_dir / relative)
+    write_generated(manifest_path, (
+        f'# {GENERATED_NOTE}\n' + '\n'.join(sorted(outputs)) + '\n'
+    ).encode('utf-8'), owned=True)
+    return report
+
+
+GENERATED_NOTE = 'Generated by colcon-robmosys: the files of the last generation'

@@ -1,0 +1,89 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""Jinja filters: every model string that reaches a file is escaped here."""
+
+from __future__ import annotations
+
+import json
+from typing import Any, Callable
+from xml.sax.saxutils import escape as _xml_escape
+
+
+def xml(text: Any) -> str:
+    """Escape text for XML element content and attribute values."""
+    return _xml_escape(str(text), {'"': '&quot;', "'": '&apos;'})
+
+
+def xml_comment(text: Any) -> str:
+    """Make text safe inside an XML comment (no ``--``)."""
+    return str(text).replace('--', '- -').replace('\n', ' ')
+
+
+def hash_comment(text: Any) -> str:
+    """Turn text into ``#`` comment lines (.msg, Python, YAML, CMake)."""
+    lines = str(text).strip().splitlines() or ['']
+    return '\n'.join(('# ' + line).rstrip() for line in lines)
+
+
+def py_str(text: Any) -> str:
+    """Write a Python string literal (single quotes where possible)."""
+    return repr(str(text))
+
+
+def py_docstring(text: Any, indent: int = 0) -> str:
+    """Write the inside of a PEP 257 docstring: summary line, then body.
+
+    The summary ends with a period; quotes and backslashes are escaped.
+    """
+    text = str(text).strip().replace('\\', '\\\\').replace('"""', '\\"\\"\\"')
+    lines = text.splitlines() or ['']
+    summary, body = lines[0].strip(), [line.rstrip() for line in lines[1:]]
+    if summary and summary[-1] not in '.?!':
+        summary += '.'
+    while body and not body[0]:
+        body.pop(0)
+    if not body:
+        return summary
+    pad = ' ' * indent
+    rest = '\n'.join(pad + line if line else '' for line in body)
+    return f'{summary}\n\n{rest}\n{pad}'
+
+
+def yaml_value(value: Any) -> str:
+    """Write a value as a YAML flow scalar or sequence (JSON is YAML)."""
+    if isinstance(value, tuple):
+        value = list(value)
+    return json.dumps(value, ensure_ascii=False)
+
+
+def cpp_str(text: Any) -> str:
+    """Write a C++ string literal."""
+    return json.dumps(str(text), ensure_ascii=True)
+
+
+def cmake_str(text: Any) -> str:
+    """Write a quoted CMake argument: no variable or generator expansion."""
+    escaped = str(text).replace('\\', '\\\\').replace('"', '\\"')
+    escaped = escaped.replace('$', '\\$').replace(';', '\\;')
+    return f'"{escaped}"'
+
+
+def dot_str(text: Any) -> str:
+    """Write a Graphviz double-quoted string."""
+    return '"' + str(text).replace('\\', '\\\\').replace('"', '\\"') \
+        .replace('\\\\n', '\\n') + '"'
+
+
+FILTERS: dict[str, Callable[..., str]] = {
+    'xml': xml,
+    'xml_comment': xml_comment,
+    'msg_comment': hash_comment,
+    'hash_comment': hash_comment,
+    'py_str': py_str,
+    'py_docstring': py_docstring,
+    'yaml_value': yaml_value,
+    'cpp_str': cpp_str,
+    'cmake_str': cmake_str,
+    'dot_str': dot_str,
+}

@@ -1,0 +1,81 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""Naming rules: what a name must be to work in ROS 2, C++ and Python."""
+
+from __future__ import annotations
+
+import keyword
+import re
+
+PACKAGE_RE = re.compile(r'^(?!.*__)(?!.*_$)[a-z][a-z0-9_]+$')
+INTERFACE_TYPE_RE = re.compile(r'^[A-Z][A-Za-z0-9]*$')
+FIELD_RE = re.compile(r'^(?!.*__)(?!.*_$)[a-z][a-z0-9_]*$')
+CONSTANT_RE = re.compile(r'^(?!.*__)[A-Z](?:[A-Z0-9_]*[A-Z0-9])?$')
+IDENTIFIER_RE = re.compile(r'^(?!.*__)[A-Za-z][A-Za-z0-9_]*$')
+
+CPP_KEYWORDS = frozenset('''
+alignas alignof and and_eq asm atomic_cancel atomic_commit atomic_noexcept
+auto bitand bitor bool break case catch char char8_t char16_t char32_t class
+compl concept const consteval constexpr constinit const_cast continue
+co_await co_return co_yield decltype default delete do double dynamic_cast
+else enum explicit export extern false float for friend goto if inline int
+long mutable namespace new noexcept not not_eq nullptr operator or or_eq
+private protected public reflexpr register reinterpret_cast requires return
+short signed sizeof static static_assert static_cast struct switch
+synchronized template this thread_local throw true try typedef typeid
+typename union unsigned using virtual void volatile wchar_t while xor xor_eq
+final override import module NULL
+'''.split())
+
+PYTHON_KEYWORDS = frozenset(keyword.kwlist) | frozenset(keyword.softkwlist)
+
+#: Members of rclpy's and rclcpp_lifecycle's LifecycleNode (and names the
+#: generated classes use): a function of that name would replace them.
+NODE_MEMBERS = frozenset('''
+add_managed_entity add_on_set_parameters_callback
+add_post_set_parameters_callback add_pre_set_parameters_callback add_waitable
+clients context count_clients count_publishers count_services
+count_subscribers create_client create_guard_condition
+create_lifecycle_publisher create_publisher create_rate create_service
+create_subscription create_timer create_wall_timer create_callback_group
+declare_parameter declare_parameters default_callback_group
+describe_parameter describe_parameters destroy_client destroy_guard_condition
+destroy_lifecycle_publisher destroy_node destroy_publisher destroy_rate
+destroy_service destroy_subscription destroy_timer executor get_clock
+get_fully_qualified_name get_fully_qualified_node_names get_logger get_name
+get_namespace get_node_names get_node_names_and_namespaces get_parameter
+get_parameter_or get_parameter_type get_parameter_types get_parameters
+get_parameters_by_prefix get_topic_names_and_types guards handle
+has_parameter list_parameters on_activate on_cleanup on_configure
+on_deactivate on_error on_shutdown publishers remove_waitable
+resolve_service_name resolve_topic_name services set_descriptor
+set_parameters set_parameters_atomically subscriptions timers
+trigger_activate trigger_cleanup trigger_configure trigger_deactivate
+trigger_shutdown undeclare_parameter wait_for_node waitables now configure
+activate deactivate cleanup shutdown get_current_state
+params ports main
+'''.split())
+
+
+def identifier_problem(name: str) -> str | None:
+    """Return why a name cannot be a C++ and Python identifier, or None."""
+    if not IDENTIFIER_RE.match(name):
+        return ('must start with a letter and hold only letters, digits and '
+                'single underscores')
+    if name in CPP_KEYWORDS:
+        return 'is a C++ keyword'
+    if name in PYTHON_KEYWORDS:
+        return 'is a Python keyword'
+    return None
+
+
+def package_problem(name: str) -> str | None:
+    """Return why a name cannot be a ROS 2 package name (REP 144), or None."""
+    if not PACKAGE_RE.match(name):
+        return ('is not a valid ROS 2 package name: lower case letters, '
+                'digits and single underscores, starting with a letter, '
+                'at least two characters, not ending with an underscore')
+    if name in CPP_KEYWORDS or name in PYTHON_KEYWORDS:
+        return 'is a C++ or Python keyword, which cannot name a package'
+    return None

@@ -1,0 +1,149 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""Structural validation against the JSON Schema shipped with the package."""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from importlib import resources
+import json
+from typing import Any, Iterator
+
+from jsonschema import Draft202012Validator
+from jsonschema.exceptions import ValidationError
+
+from colcon_robmosys.errors import Diagnostic
+from colcon_robmosys.model.loader import LoadedFile
+
+SCHEMA_FILE = 'robmosys.schema.json'
+
+_KIND_NAMES = {
+    'object': 'a mapping', 'array': 'a list', 'string': 'a string',
+    'integer': 'an integer', 'number': 'a number', 'boolean': 'true or false',
+    'null': 'nothing',
+}
+
+
+@lru_cache(maxsize=1)
+def schema() -> dict[str, Any]:
+    """Return the JSON Schema of robmosys.yaml files."""
+    text = resources.files('colcon_robmosys.model').joinpath(
+        SCHEMA_FILE).read_text(encoding='utf-8')
+    return json.loads(text)
+
+
+@lru_cache(maxsize=1)
+def _validator() -> Draft202012Validator:
+    return Draft202012Validator(schema())
+
+
+def _describe(value: Any) -> str:
+    if isinstance(value, bool):
+        return 'true' if value else 'false'
+    if value is None:
+        return 'nothing'
+    if isinstance(value, dict):
+        return 'a mapping'
+    if isinstance(value, list):
+        return 'a list'
+    if isinstance(value, str):
+        return f"'{value}'"
+    return repr(value)
+
+
+def _subject(path: tuple) -> str:
+    for part in reversed(path):
+        if isinstance(part, str):
+            return f"'{part}'"
+    return 'the model'
+
+
+def _message(error: ValidationError) -> tuple[str, bool]:
+    """Return the message of a schema error and whether it is about a key."""
+    path = tuple(error.absolute_path)
+    validator = error.validator
+    if validator == 'additionalProperties':
+        allowed = sorted(error.schema.get('properties', {}))
+        extra = sorted(set(error.instance) - set(allowed))
+        hint = f" (expected one of: {', '.join(allowed)})" if allowed else ''
+        return f"unknown key '{extra[0]}' in {_subject(path)}{hint}", True
+    if validator == 'required':
+        missing = error.message.split("'")[1]
+        return f"{_subject(path)} lacks the required key '{missing}'", False
+    if validator == 'type':
+        expected = error.validator_value
+        kinds = expected if isinstance(expected, list) else [expected]
+        wanted = ' or '.join(_KIND_NAMES.get(k, k) for k in kinds)
+        return (f'{_subject(path)} must be {wanted}, not '
+                f'{_describe(error.instance)}'), False
+    if validator == 'enum':
+        options = ', '.join(str(v) for v in error.validator_value)
+        return (f'{_subject(path)} is {_describe(error.instance)}, which is '
+                f'not one of: {options}'), False
+    if validator == 'const':
+        return (f'{_subject(path)} must be {error.validator_value}, not '
+                f'{_describe(error.instance)}'), False
+    if validator == 'pattern':
+        what = error.schema.get('description', f'match {error.validator_value}')
+        return (f'{_subject(path)}: {_describe(error.instance)} is not valid: '
+                f'{what[0].lower()}{what[1:]}'), False
+    if validator == 'propertyNames':
+        return (f"'{error.instance}' is not a valid name: "
+                f"{error.schema.get('description', 'invalid name')}"), True
+    if validator in ('minItems', 'minProperties'):
+        return f'{_subject(path)} must not be empty', False
+    if validator in ('minimum', 'exclusiveMinimum'):
+        bound = error.validator_value
+        relation = 'at least' if validator == 'minimum' else 'more than'
+        return (f'{_subject(path)} must be {relation} {bound}, not '
+                f'{_describe(error.instance)}'), False
+    if validator == 'uniqueItems':
+        return f'{_subject(path)} lists an item twice', False
+    return f'{_subject(path)}: {error.message}', False
+
+
+def _leaves(error: ValidationError) -> Iterator[ValidationError]:
+    """Pick the most useful errors below a oneOf/anyOf failure."""
+    if error.validator not in ('oneOf', 'anyOf') or not error.context:
+        yield error
+        return
+    # the alternative that got furthest into the document explains best
+    deepest = max(len(e.absolute_path) for e in error.context)
+    candidates = [e for e in error.context
+                  if len(e.absolute_path) == deepest]
+    if deepest == len(error.absolute_path):
+        # no alternative matched even the kind of node: say what it must be
+        kinds = [e.validator_value for e in error.context
+                 if e.validator == 'type']
+        if kinds and len(kinds) == len(error.context):
+            wanted = ' or '.join(_KIND_NAMES.get(k, str(k)) for k in kinds)
+            yield ValidationError(
+                f'must be {wanted}', validator='type',
+                validator_value=kinds, instance=error.instance,
+                path=error.relative_path, schema=error.schema)
+            return
+        candidates = [e for e in candidates if e.validator != 'type'] or \
+            candidates
+    for candidate in candidates[:1]:
+        yield from _leaves(candidate)
+
+
+def check_structure(loaded: LoadedFile) -> list[Diagnostic]:
+    """Check a loaded file against the schema; return every problem."""
+    diagnostics = []
+    for error in _validator().iter_errors(loaded.data):
+        for leaf in _leaves(error):
+            path = tuple(error.absolute_path) + tuple(
+                leaf.relative_path)[len(error.relative_path):] \
+                if leaf is not error else tuple(error.absolute_path)
+            message, about_key = _message(leaf)
+            if about_key and leaf.validator == 'additionalProperties':
+                extra = sorted(set(leaf.instance) - set(
+                    leaf.schema.get('properties', {})))
+                path = tuple(path) + (extra[0],)
+            elif about_key:
+                path = tuple(path) + (leaf.instance,)
+            diagnostics.append(Diagnostic(
+                loaded.location(path, key=about_key), message))
+    return diagnostics

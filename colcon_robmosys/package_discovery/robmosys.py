@@ -1,0 +1,104 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+from pathlib import Path
+
+from colcon_core.dependency_descriptor import DependencyDescriptor
+from colcon_core.logging import colcon_logger
+from colcon_core.package_descriptor import PackageDescriptor
+from colcon_core.package_discovery import PackageDiscoveryExtensionPoint
+from colcon_core.plugin_system import satisfies_version
+from colcon_robmosys.model import load_workspace
+from colcon_robmosys.model import model_dependencies
+from colcon_robmosys.model.loader import load_file
+from colcon_robmosys.model.types import Component
+from colcon_robmosys.model.types import ServiceDefinition
+from colcon_robmosys.package_identification.robmosys import \
+    RobmosysPackageIdentification
+
+logger = colcon_logger.getChild(__name__)
+
+#: Where a package descriptor keeps the loaded workspace.
+METADATA_KEY = 'robmosys'
+
+
+class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
+    """Turn every recorded model file into one package per model.
+
+    The models of the whole workspace are loaded and validated together,
+    since components use service definitions and systems use components.
+    Nothing is written: files are only written by the build and the verb.
+    """
+
+    # after the crawling discovery extensions (100 and up) have identified
+    # every folder
+    PRIORITY = 10
+
+    def __init__(self):  # noqa: D107
+        super().__init__()
+        satisfies_version(
+            PackageDiscoveryExtensionPoint.EXTENSION_POINT_VERSION, '^1.0')
+
+    def has_parameters(self, *, args):  # noqa: D102
+        # passive: runs along with whichever discovery the user chose
+        return None
+
+    def discover(self, *, args, identification_extensions):  # noqa: D102
+        model_files = set()
+        for extensions_same_prio in identification_extensions.values():
+            for extension in extensions_same_prio.values():
+                if isinstance(extension, RobmosysPackageIdentification):
+                    model_files |= extension.model_files
+        if not model_files:
+            return set()
+        result = load_workspace(model_files)
+        for diagnostic in result.diagnostics:
+            if diagnostic.severity == 'error':
+                logger.error(str(diagnostic))
+            else:
+                logger.warning(str(diagnostic))
+        descriptors = set()
+        for model in result.workspace.models:
+            kind = 'interfaces' if isinstance(model, ServiceDefinition) else \
+                'component' if isinstance(model, Component) else 'system'
+            descriptors.add(_descriptor(
+                model.info.model_file, model.package, kind,
+                model_dependencies(model), result))
+        for model_file in sorted(result.broken_files):
+            # the build of these packages reports the errors and fails
+            for name, kind in _declared_packages(model_file):
+                descriptors.add(_descriptor(model_file, name, kind, (), result))
+        return descriptors
+
+
+def _descriptor(model_file, name, kind, dependencies, result):
+    desc = PackageDescriptor(Path(model_file).parent)
+    desc.type = f'robmosys.{kind}'
+    desc.name = name
+    for category in ('build', 'run'):
+        desc.dependencies[category] = {
+            DependencyDescriptor(d) for d in dependencies}
+    desc.metadata[METADATA_KEY] = result
+    desc.metadata['robmosys_model_file'] = str(model_file)
+    return desc
+
+
+def _declared_packages(model_file):
+    """Name the packages of a broken model file as far as it can be read."""
+    fallback = [(Path(model_file).parent.name, 'invalid')]
+    try:
+        data = load_file(Path(model_file)).data
+    except Exception:  # noqa: B902 - any failure: the build reports it
+        return fallback
+    names = []
+    if isinstance(data, dict):
+        for key, kind in (('service_definitions', 'interfaces'),
+                          ('components', 'component'),
+                          ('systems', 'system')):
+            models = data.get(key)
+            for model in models if isinstance(models, list) else ():
+                name = model.get('package') if isinstance(model, dict) \
+                    else None
+                if isinstance(name, str) and name:
+                    names.append((name, kind))
+    return names or fallback

@@ -1,0 +1,42 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+from pathlib import Path
+
+from colcon_core.package_identification import IgnoreLocationException
+from colcon_core.package_identification import \
+    PackageIdentificationExtensionPoint
+from colcon_core.plugin_system import satisfies_version
+from colcon_robmosys.model import MODEL_FILE_NAME
+
+
+class RobmosysPackageIdentification(PackageIdentificationExtensionPoint):
+    """Record the folders that hold a robmosys.yaml model file.
+
+    A model file generates one package or several, so this extension
+    identifies no package itself: it records the file for
+    :class:`RobmosysPackageDiscovery`, like colcon-cargo does for
+    workspaces.
+    """
+
+    # before ros (150): a model folder is not searched for package.xml
+    PRIORITY = 160
+
+    def __init__(self):  # noqa: D107
+        super().__init__()
+        satisfies_version(
+            PackageIdentificationExtensionPoint.EXTENSION_POINT_VERSION,
+            '^1.0')
+        self.model_files = set()
+
+    def identify(self, metadata):  # noqa: D102
+        if metadata.type is not None and \
+                not metadata.type.startswith('robmosys.'):
+            return
+        model_file = Path(metadata.path) / MODEL_FILE_NAME
+        if not model_file.is_file():
+            return
+        self.model_files.add(model_file.resolve())
+        # the folder belongs to the model: the user's implementation files
+        # below it are no packages of their own
+        raise IgnoreLocationException()

@@ -1,0 +1,57 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+from pathlib import Path
+
+from colcon_core.logging import colcon_logger
+from colcon_core.plugin_system import satisfies_version
+from colcon_core.task import TaskExtensionPoint
+from colcon_robmosys.errors import RobmosysError
+from colcon_robmosys.generate import generate_package
+from colcon_robmosys.package_discovery.robmosys import METADATA_KEY
+from colcon_robmosys.ros2 import plan_package
+from colcon_ros.task.ament_cmake.build import AmentCmakeBuildTask
+
+logger = colcon_logger.getChild(__name__)
+
+#: The folder, inside the package's build folder, of the generated sources.
+GENERATED_DIR = 'src-gen'
+
+
+class RobmosysBuildTask(TaskExtensionPoint):
+    """Generate a package from its model, then build it the ament way."""
+
+    def __init__(self):  # noqa: D107
+        super().__init__()
+        satisfies_version(TaskExtensionPoint.EXTENSION_POINT_VERSION, '^1.0')
+
+    async def build(self):  # noqa: D102
+        pkg, args = self.context.pkg, self.context.args
+        result = pkg.metadata[METADATA_KEY]
+        model_file = pkg.metadata['robmosys_model_file']
+        errors = result.errors_of(model_file)
+        if errors or model_file in result.broken_files:
+            for diagnostic in errors:
+                logger.error(str(diagnostic))
+            logger.error(
+                f"cannot generate '{pkg.name}': its model file has errors")
+            return 1
+        source_dir = Path(args.build_base) / GENERATED_DIR
+        try:
+            plan = plan_package(result.workspace, pkg.name)
+            report = generate_package(plan, source_dir)
+        except RobmosysError as error:
+            for diagnostic in error.diagnostics:
+                logger.error(str(diagnostic))
+            return 1
+        logger.info(
+            f"Generated '{pkg.name}' in '{source_dir}': "
+            f'{len(report.written)} files written, '
+            f'{len(report.unchanged)} unchanged, '
+            f'{len(report.removed)} removed')
+
+        # the generated tree is an ordinary ament_cmake package
+        args.path = str(source_dir)
+        extension = AmentCmakeBuildTask()
+        extension.set_context(context=self.context)
+        return await extension.build()

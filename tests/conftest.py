@@ -1,0 +1,83 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""Fixtures shared by the tests: the ROS environment and the built test workspace."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+import shutil
+import sys
+
+from harness import ros_env
+import pytest
+
+REPO = Path(__file__).resolve().parent.parent
+TEST_WORKSPACE = REPO / 'test_workspace'
+
+
+def ros_missing_reason() -> str | None:
+    """Return why real ROS 2 cannot run here, or None if it can."""
+    try:
+        import rclpy  # noqa: F401
+    except ImportError as error:
+        return f'rclpy is not importable ({error}): run the tests with `make test`'
+    if shutil.which('colcon', path=str(Path(sys.prefix) / 'bin')) is None:
+        return 'colcon is not installed in this venv: run the tests with `make test`'
+    return None
+
+
+requires_ros = pytest.mark.skipif(ros_missing_reason() is not None,
+                                  reason=ros_missing_reason() or '')
+
+
+@dataclass(frozen=True)
+class BuiltWorkspace:
+    """A copy of a workspace, built with colcon."""
+
+    root: Path
+    build_output: str
+
+    @property
+    def install(self) -> Path:
+        """Return the install folder."""
+        return self.root / 'install'
+
+    def env(self, domain_id: int) -> dict[str, str]:
+        """Return the environment of a user who sourced the install, on loopback."""
+        return ros_env.workspace_env(self.install, ros_env.loopback_env(domain_id))
+
+    def share(self, package: str) -> Path:
+        """Return the installed share folder of a package."""
+        return self.install / package / 'share' / package
+
+
+def colcon(args: list[str], *, cwd: Path, timeout: float = 900,
+           domain_id: int = 0) -> 'ros_env.subprocess.CompletedProcess':
+    """Run colcon from this venv in a workspace, on loopback."""
+    env = ros_env.loopback_env(domain_id or ros_env.free_domain_id())
+    return ros_env.run([str(Path(sys.prefix) / 'bin' / 'colcon'), *args],
+                       env=env, cwd=cwd, timeout=timeout)
+
+
+def build_workspace(src: Path, root: Path, *extra: str) -> BuiltWorkspace:
+    """Copy a workspace's src folder to root and build it with colcon."""
+    shutil.copytree(src, root / 'src', ignore=shutil.ignore_patterns('__pycache__'))
+    result = colcon(['build', '--event-handlers', 'console_cohesion+', *extra], cwd=root)
+    output = result.stdout + result.stderr
+    assert result.returncode == 0, f'colcon build failed:\n{output}'
+    return BuiltWorkspace(root, output)
+
+
+@pytest.fixture(scope='session')
+def test_workspace_built(tmp_path_factory) -> BuiltWorkspace:
+    """Return test_workspace, copied and built once per test session."""
+    if ros_missing_reason():
+        pytest.skip(ros_missing_reason())
+    return build_workspace(TEST_WORKSPACE / 'src', tmp_path_factory.mktemp('test_ws'))
+
+
+@pytest.fixture
+def domain_id() -> int:
+    """Return a ROS_DOMAIN_ID of this test's own."""
+    return ros_env.free_domain_id()

@@ -1,0 +1,172 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""Bring a generated system up the way its launch files would, without launch_ros.
+
+launch_ros is not on PyPI, so tests and the demo read the generated ``launch.py``
+(as Python source, never executing it), start each node with the command line
+launch_ros would build, and drive the lifecycle through the nodes' real services.
+"""
+
+from __future__ import annotations
+
+import ast
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable
+
+from harness.ros_env import FASTDDS_PROFILE
+
+
+@dataclass(frozen=True)
+class NodeLaunch:
+    """One ``LifecycleNode(...)`` of a generated launch file, as plain data."""
+
+    package: str
+    executable: str
+    name: str
+    namespace: str
+    remappings: tuple[tuple[str, str], ...]
+    params_files: tuple[Path, ...]
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def fqn(self) -> str:
+        """Return the fully qualified node name."""
+        return f"{self.namespace.rstrip('/')}/{self.name}"
+
+    def command(self, install_dir: Path) -> list[str]:
+        """Return the command line launch_ros runs for this node."""
+        executable = install_dir / self.package / 'lib' / self.package / self.executable
+        command = [str(executable), '--ros-args',
+                   '-r', f'__node:={self.name}']
+        if self.namespace:
+            command += ['-r', f'__ns:={self.namespace}']
+        for params_file in self.params_files:
+            command += ['--params-file', str(params_file)]
+        for source, target in self.remappings:
+            command += ['-r', f'{source}:={target}']
+        return command
+
+
+def _literal(node: ast.AST, names: dict[str, Any]) -> Any:
+    if isinstance(node, ast.Name) and node.id in names:
+        return names[node.id]
+    if isinstance(node, ast.List):
+        return [_literal(item, names) for item in node.elts]
+    return ast.literal_eval(node)
+
+
+def read_launch_file(path: Path, share_dir: Path) -> list[NodeLaunch]:
+    """Return the lifecycle nodes a generated launch file starts.
+
+    :param share_dir: ``share/<system package>`` of the install, where the
+      ``params_file`` of the launch file resolves
+    """
+    tree = ast.parse(path.read_text(encoding='utf-8'), filename=str(path))
+    names: dict[str, Any] = {}
+    for node in ast.walk(tree):
+        # params_file = os.path.join(get_package_share_directory(pkg), 'cfg/...')
+        if isinstance(node, ast.Assign) and isinstance(node.value, ast.Call) and \
+                len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+            call = node.value
+            if ast.unparse(call.func) == 'os.path.join' and \
+                    ast.unparse(call.args[0].func) == 'get_package_share_directory':
+                relative = ast.literal_eval(call.args[1])
+                names[node.targets[0].id] = share_dir / relative
+    nodes = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call) and ast.unparse(node.func) == 'LifecycleNode':
+            kwargs = {k.arg: _literal(k.value, names) for k in node.keywords}
+            nodes.append(NodeLaunch(
+                package=kwargs.pop('package'),
+                executable=kwargs.pop('executable'),
+                name=kwargs.pop('name'),
+                namespace=kwargs.pop('namespace', ''),
+                remappings=tuple(tuple(r) for r in kwargs.pop('remappings', [])),
+                params_files=tuple(Path(p) for p in kwargs.pop('parameters', [])),
+                extra=kwargs))
+    return nodes
+
+
+def wait_until(condition: Callable[[], bool], timeout: float, period: float = 0.1) -> bool:
+    """Poll ``condition`` until it holds or ``timeout`` seconds pass."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if condition():
+            return True
+        time.sleep(period)
+    return condition()
+
+
+class LifecycleDriver:
+    """An rclpy node in this process that calls lifecycle and parameter services.
+
+    It only uses interfaces from the ROS prefix (lifecycle_msgs, rcl_interfaces),
+    so it needs nothing of the workspace under test.
+    """
+
+    def __init__(self, domain_id: int) -> None:
+        # DDS reads its profile when the participant is created, so set it first
+        os.environ['FASTDDS_DEFAULT_PROFILES_FILE'] = str(FASTDDS_PROFILE)
+        os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
+        os.environ['RMW_IMPLEMENTATION'] = 'rmw_fastrtps_cpp'
+        import rclpy
+        from rclpy.context import Context
+        from rclpy.executors import SingleThreadedExecutor
+        self._rclpy = rclpy
+        self.context = Context()
+        rclpy.init(context=self.context, domain_id=domain_id)
+        self.node = rclpy.create_node('robmosys_test_driver', context=self.context)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+        self._clients: dict[tuple[type, str], Any] = {}
+
+    def close(self) -> None:
+        """Destroy the node and shut the context down."""
+        self.executor.shutdown()
+        self.node.destroy_node()
+        self._rclpy.try_shutdown(context=self.context)
+
+    def __enter__(self) -> 'LifecycleDriver':
+        return self
+
+    def __exit__(self, *exc_info: object) -> None:
+        self.close()
+
+    def _call(self, srv_type: type, name: str, request: Any, timeout: float) -> Any:
+        key = (srv_type, name)
+        if key not in self._clients:
+            self._clients[key] = self.node.create_client(srv_type, name)
+        client = self._clients[key]
+        if not client.wait_for_service(timeout_sec=timeout):
+            raise TimeoutError(f'service {name} did not appear within {timeout} s')
+        future = client.call_async(request)
+        self.executor.spin_until_future_complete(future, timeout_sec=timeout)
+        if not future.done():
+            raise TimeoutError(f'service {name} did not answer within {timeout} s')
+        return future.result()
+
+    def state(self, fqn: str, timeout: float = 20.0) -> str:
+        """Return the label of the node's current lifecycle state."""
+        from lifecycle_msgs.srv import GetState
+        return self._call(GetState, f'{fqn}/get_state', GetState.Request(),
+                          timeout).current_state.label
+
+    def transition(self, fqn: str, label: str, timeout: float = 20.0) -> bool:
+        """Trigger a transition (configure, activate, ...); return its success."""
+        from lifecycle_msgs.msg import Transition
+        from lifecycle_msgs.srv import ChangeState
+        request = ChangeState.Request()
+        request.transition = Transition(
+            id=getattr(Transition, f'TRANSITION_{label.upper()}'))
+        return self._call(ChangeState, f'{fqn}/change_state', request, timeout).success
+
+    def parameters(self, fqn: str, names: list[str], timeout: float = 20.0) -> dict[str, Any]:
+        """Return the current values of some parameters of a node."""
+        from rcl_interfaces.srv import GetParameters
+        from rclpy.parameter import parameter_value_to_python
+        request = GetParameters.Request(names=names)
+        answer = self._call(GetParameters, f'{fqn}/get_parameters', request, timeout)
+        return {n: parameter_value_to_python(v) for n, v in zip(names, answer.values)}
