@@ -14,7 +14,7 @@ VPY := $(VENV)/bin/python
 PKG_FILES := $(shell find colcon_robmosys templates -type f ! -name '*.pyc' 2>/dev/null) \
              $(wildcard setup.cfg setup.py)
 
-# Running from a clone of CI: no cache directory left behind.
+# CI runs in a fresh clone: leave no pytest cache behind.
 ifeq ($(CI),true)
 PYTEST_FLAGS := -p no:cacheprovider
 endif

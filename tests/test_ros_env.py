@@ -6,7 +6,9 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+import subprocess
 import sys
+import time
 
 from harness import ros_env
 import pytest
@@ -81,6 +83,13 @@ def test_workspace_env_sources_local_setup(tmp_path: Path) -> None:
     assert env['ROBMOSYS_TEST_PREFIX'] == str(tmp_path.resolve())
     assert env['KEEP'] == 'a b\nc'
     assert 'COLCON_CURRENT_PREFIX' not in env
+
+
+def test_run_kills_a_command_at_its_timeout() -> None:
+    started = time.monotonic()
+    with pytest.raises(subprocess.TimeoutExpired):
+        ros_env.run(['sh', '-c', 'sleep 30 & sleep 30'], env=os.environ, timeout=0.5)
+    assert time.monotonic() - started < 10
 
 
 def test_publisher_reaches_subscriber_on_loopback() -> None:

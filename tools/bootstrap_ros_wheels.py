@@ -41,7 +41,7 @@ _SITE_PACKAGES = re.compile(r'/lib/python\d+\.\d+/site-packages/(.*)$')
 
 
 def _numpy_include() -> str:
-    import numpy  # a dependency of ros-rclpy; imported late so --help works without it
+    import numpy  # a dependency of ros-rclpy; imported only when a numpy path is found
     return str(numpy.get_include())
 
 

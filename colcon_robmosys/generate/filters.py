@@ -34,7 +34,9 @@ def py_str(text: Any) -> str:
 def py_docstring(text: Any, indent: int = 0) -> str:
     """Write the inside of a PEP 257 docstring: summary line, then body.
 
-    The summary ends with a period; quotes and backslashes are escaped.
+    The summary ends with a period; quotes and backslashes are escaped. A
+    multi-line docstring starts on the line after the quotes, as the ament
+    convention of pep257 wants (D213).
     """
     text = str(text).strip().replace('\\', '\\\\').replace('"""', '\\"\\"\\"')
     lines = text.splitlines() or ['']
@@ -47,7 +49,7 @@ def py_docstring(text: Any, indent: int = 0) -> str:
         return summary
     pad = ' ' * indent
     rest = '\n'.join(pad + line if line else '' for line in body)
-    return f'{summary}\n\n{rest}\n{pad}'
+    return f'\n{pad}{summary}\n\n{rest}\n{pad}'
 
 
 def yaml_value(value: Any) -> str:

@@ -53,9 +53,15 @@ def _python_names(refs: list[InterfaceRef]) -> dict[InterfaceRef, str]:
 
 
 def import_lines(modules: dict[str, set[str]]) -> list[str]:
-    """Write ``from module import names`` lines, sorted as flake8 wants."""
+    """Write ``from module import names`` lines, sorted as flake8 wants.
+
+    An empty set of names stands for ``import module``.
+    """
     lines = []
     for module in sorted(modules, key=str.lower):
+        if not modules[module]:
+            lines.append(f'import {module}')
+            continue
         names = ', '.join(sorted(modules[module], key=str.lower))
         line = f'from {module} import {names}'
         if len(line) > 99:
@@ -164,10 +170,16 @@ def _parameter_context(parameter: Parameter) -> dict[str, Any]:
         'ros_type': ros_type,
         'default': repr(default),
         'description': parameter.description,
-        'doc': parameter.description or f'The parameter {parameter.name}.',
+        # pep257 wants an imperative summary; the model's text follows it
+        'doc': _doc(f'Return the parameter {parameter.name}.',
+                    parameter.description),
         'read_only': parameter.read_only,
         'range': range_,
     }
+
+
+def _doc(summary: str, text: str) -> str:
+    return f'{summary}\n\n{text}' if text.strip() else summary
 
 
 def _function_context(component: Component, name: str,
@@ -180,8 +192,8 @@ def _function_context(component: Component, name: str,
             ' ' * 8 + 'pass'
     return {
         'name': name, 'args': args, 'code': code,
-        'description': function.description or
-        f'Run the function {name} of the model.',
+        'description': _doc(f'Run the function {name} of the model.',
+                            function.description),
     }
 
 
@@ -243,8 +255,12 @@ def plan_python_component(component: Component) -> PackagePlan:
         FileSpec(f'{package}/{cls}.py', 'component_python/node.py.jinja',
                  module_context),
         FileSpec(f'{package}/{cls}_main.py', 'component_python/main.py.jinja',
-                 {'banner': banner, 'package': package, 'cls': cls,
-                  'node_module': node_module, 'node_cls': node_cls}),
+                 {'banner': banner, 'cls': cls, 'node_cls': node_cls,
+                  'imports': import_lines({
+                      'rclpy': set(),
+                      'rclpy.executors': {'ExternalShutdownException',
+                                          'MultiThreadedExecutor'},
+                      f'{package}.{node_module}': {node_cls}})}),
         FileSpec(f'scripts/{cls}', 'component_python/executable.jinja',
                  {'banner': banner, 'package': package, 'cls': cls},
                  executable=True),

@@ -64,6 +64,9 @@ def loopback_env(domain_id: int, base: Mapping[str, str] | None = None,
     """
     if not 0 <= domain_id <= 232:
         raise ValueError(f'ROS_DOMAIN_ID {domain_id} is out of range 0..232')
+    # LD_LIBRARY_PATH and _ROS_WHEELS_BOOTSTRAP_COMPLETE pass through: a Python child
+    # that finds the guard set skips the wheels' re-exec, which would reorder every
+    # LD_LIBRARY_PATH entry at random (it goes through a set), overlays included.
     env = dict(os.environ if base is None else base)
     for name in _NON_LOCAL:
         env.pop(name, None)

@@ -1,0 +1,138 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""colcon sees the models' packages; the verb and the build keep user files safe."""
+
+from __future__ import annotations
+
+from pathlib import Path
+import shutil
+
+from conftest import colcon, requires_ros, TEST_WORKSPACE
+import pytest
+
+pytestmark = requires_ros
+
+IMPL = Path('src/subscriber/src/subscriber/Subscriber_impl.py')
+
+
+@pytest.fixture
+def workspace(tmp_path) -> Path:
+    """Return a fresh copy of test_workspace (sources only)."""
+    shutil.copytree(TEST_WORKSPACE / 'src', tmp_path / 'src',
+                    ignore=shutil.ignore_patterns('__pycache__'))
+    return tmp_path
+
+
+def files_of(root: Path) -> dict[Path, bytes]:
+    return {p.relative_to(root): p.read_bytes() for p in root.rglob('*') if p.is_file()}
+
+
+def test_colcon_list_shows_one_package_per_model(workspace):
+    result = colcon(['list'], cwd=workspace)
+    assert result.returncode == 0, result.stderr
+    rows = sorted(tuple(line.split('\t')[::2]) for line in result.stdout.splitlines())
+    assert rows == [
+        ('map_tools', '(ros.ament_cmake)'),
+        ('publisher', '(robmosys.component)'),
+        ('pubsub_system', '(robmosys.system)'),
+        ('simple_msgs', '(robmosys.interfaces)'),
+        ('subscriber', '(robmosys.component)'),
+    ]
+
+
+def test_colcon_orders_generated_packages_like_any_other(workspace):
+    result = colcon(['list', '--topological-order', '--names-only'], cwd=workspace)
+    order = result.stdout.split()
+    assert order.index('simple_msgs') < order.index('publisher') < order.index('pubsub_system')
+    assert order.index('simple_msgs') < order.index('subscriber') < order.index('pubsub_system')
+    assert order.index('simple_msgs') < order.index('map_tools')
+    selected = colcon(['list', '--names-only', '--packages-up-to', 'subscriber'],
+                      cwd=workspace).stdout.split()
+    assert sorted(selected) == ['simple_msgs', 'subscriber']
+
+
+def test_listing_writes_nothing(workspace):
+    before = files_of(workspace)
+    colcon(['list'], cwd=workspace)
+    colcon(['graph'], cwd=workspace)
+    colcon(['robmosys-generate', '--validate-only'], cwd=workspace)
+    after = files_of(workspace)
+    assert {p for p in after if p.parts[0] != 'log'} == set(before)
+    assert all(after[p] == data for p, data in before.items())
+
+
+def test_validate_only_reports_every_error_and_fails(workspace):
+    model = workspace / 'src' / 'publisher' / 'robmosys.yaml'
+    text = model.read_text()
+    model.write_text(text.replace('functions: [fPublishing]', 'functions: [fMissing]')
+                         .replace('pattern: push', 'pattern: pull'))
+    before = files_of(workspace / 'src')
+    result = colcon(['robmosys-generate', '--validate-only'], cwd=workspace)
+    assert result.returncode != 0
+    output = result.stdout + result.stderr
+    assert f"{model}:13:18: error: 'pattern' is 'pull', which is not one of: " \
+        'push, send, query, event, action' in output
+    assert files_of(workspace / 'src') == before
+
+
+def test_generate_creates_missing_implementation_only(workspace):
+    impl = workspace / IMPL
+    impl.unlink()
+    result = colcon(['robmosys-generate', '--packages-select', 'subscriber'], cwd=workspace)
+    assert result.returncode == 0, result.stderr
+    created = impl.read_text()
+    assert 'class Subscriber_impl(Subscriber):' in created
+    assert 'def fListening(self, commobj) -> None:' in created
+
+    impl.write_text('# my own work\n' + created)
+    mine = impl.read_bytes()
+    result = colcon(['robmosys-generate', '--output-dir', 'gen'], cwd=workspace)
+    assert result.returncode == 0, result.stderr
+    assert impl.read_bytes() == mine
+    generated = workspace / 'gen' / 'subscriber'
+    assert (generated / 'src-skel' / 'subscriber' / 'Subscriber_impl_skel.py').is_file()
+    assert (generated / 'subscriber' / 'Subscriber_impl.py').read_bytes() == mine
+    assert sorted(p.name for p in (workspace / 'gen').iterdir()) == [
+        'publisher', 'pubsub_system', 'simple_msgs', 'subscriber']
+
+
+def test_generate_honours_package_selection(workspace):
+    result = colcon(['robmosys-generate', '--output-dir', 'gen',
+                     '--packages-select', 'simple_msgs'], cwd=workspace)
+    assert result.returncode == 0, result.stderr
+    assert [p.name for p in (workspace / 'gen').iterdir()] == ['simple_msgs']
+    assert (workspace / 'gen' / 'simple_msgs' / 'msg' / 'OGM.msg').is_file()
+
+
+def test_build_without_implementation_fails_clearly(workspace):
+    (workspace / IMPL).unlink()
+    result = colcon(['build', '--packages-select', 'subscriber'], cwd=workspace)
+    assert result.returncode != 0
+    output = result.stdout + result.stderr
+    assert 'the implementation file is missing' in output
+    assert "colcon robmosys-generate --packages-select subscriber" in output
+    assert not (workspace / IMPL).exists()
+    assert not (workspace / 'build' / 'subscriber' / 'src-gen').exists()
+
+
+def test_build_names_a_function_the_implementation_lacks(workspace):
+    impl = workspace / IMPL
+    impl.write_text(impl.read_text().replace('def fListening', 'def fListening_old'))
+    mine = impl.read_bytes()
+    result = colcon(['build', '--packages-select', 'subscriber'], cwd=workspace)
+    assert result.returncode != 0
+    output = result.stdout + result.stderr
+    assert f"{impl}:10:1: error: class 'Subscriber_impl' lacks the function " \
+        "'fListening' of the model; the skeleton " \
+        'src-skel/subscriber/Subscriber_impl_skel.py' in output
+    assert impl.read_bytes() == mine
+
+
+def test_build_of_a_broken_model_fails_and_writes_nothing(workspace):
+    model = workspace / 'src' / 'subscriber' / 'robmosys.yaml'
+    model.write_text(model.read_text().replace('trigger: rMap', 'trigger: rMapp'))
+    result = colcon(['build', '--packages-select', 'subscriber'], cwd=workspace)
+    assert result.returncode != 0
+    assert f"{model}:19:18: error: activity 'HandleMsg' is triggered by unknown port " \
+        "'rMapp' (known: rMap)" in result.stdout + result.stderr
+    assert not (workspace / 'build' / 'subscriber' / 'src-gen').exists()
