@@ -9,8 +9,9 @@ from pathlib import Path
 import shutil
 import sys
 
-from harness import ros_env
 import pytest
+
+from harness import ros_env
 
 REPO = Path(__file__).resolve().parent.parent
 TEST_WORKSPACE = REPO / 'test_workspace'

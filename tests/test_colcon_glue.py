@@ -7,8 +7,9 @@ from __future__ import annotations
 from pathlib import Path
 import shutil
 
-from conftest import colcon, requires_ros, TEST_WORKSPACE
 import pytest
+
+from conftest import colcon, requires_ros, TEST_WORKSPACE
 
 pytestmark = requires_ros
 
@@ -110,7 +111,7 @@ def test_build_without_implementation_fails_clearly(workspace):
     assert result.returncode != 0
     output = result.stdout + result.stderr
     assert 'the implementation file is missing' in output
-    assert "colcon robmosys-generate --packages-select subscriber" in output
+    assert 'colcon robmosys-generate --packages-select subscriber' in output
     assert not (workspace / IMPL).exists()
     assert not (workspace / 'build' / 'subscriber' / 'src-gen').exists()
 

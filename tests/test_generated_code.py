@@ -9,14 +9,15 @@ import shutil
 import subprocess
 import sys
 
+import pytest
+import yaml
+
 from colcon_robmosys.generate import generate_package
 from colcon_robmosys.model import find_model_files, load_workspace
 from colcon_robmosys.model.index import InterfaceIndex
 from colcon_robmosys.ros2 import plan_package
 from conftest import TEST_WORKSPACE
 from harness.system import read_launch_file
-import pytest
-import yaml
 
 
 def generate_workspace(src: Path, out: Path) -> dict[str, object]:
@@ -137,4 +138,3 @@ def test_launch_files_follow_the_system_model(generated, launch_file):
 def test_params_file_holds_the_overrides(generated):
     params = yaml.safe_load((generated / 'pubsub_system' / 'cfg' / 'params.yaml').read_text())
     assert params == {'/publisher': {'ros__parameters': {'indoor': True, 'noOfScans': 3}}}
-

@@ -7,10 +7,11 @@ from __future__ import annotations
 import contextlib
 import re
 
+import pytest
+
 from conftest import requires_ros
 from harness.ros_env import background
 from harness.system import LifecycleDriver, read_launch_file, wait_until
-import pytest
 
 pytestmark = [pytest.mark.integration, requires_ros]
 

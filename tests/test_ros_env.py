@@ -10,8 +10,9 @@ import subprocess
 import sys
 import time
 
-from harness import ros_env
 import pytest
+
+from harness import ros_env
 
 PUBLISHER = """
 import rclpy

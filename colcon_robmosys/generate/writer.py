@@ -26,7 +26,7 @@ def _write_temp(path: Path, data: bytes, mode: int) -> Path:
             stream.flush()
             os.fsync(stream.fileno())
         os.chmod(temp, mode)
-    except BaseException:
+    except BaseException:  # noqa: B902 - no temporary file outlives a failure
         os.unlink(temp)
         raise
     return Path(temp)

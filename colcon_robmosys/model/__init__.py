@@ -6,4 +6,4 @@
 from colcon_robmosys.model.types import *  # noqa: F401,F403
 from colcon_robmosys.model.workspace import (  # noqa: F401
     find_model_files, load_model_file, load_workspace, LoadResult,
-    MODEL_FILE_NAME, model_dependencies)
+    model_dependencies, MODEL_FILE_NAME)

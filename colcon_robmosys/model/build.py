@@ -67,7 +67,8 @@ def parameter_value_problem(type_name: str, value: Any) -> str | None:
             return f'{value!r} is not a list of {type_name[:-2]} values'
         return None
     if not PARAMETER_KINDS[type_name](value):
-        return f'{value!r} is not a {type_name} value'
+        article = 'an' if type_name == 'int' else 'a'
+        return f'{value!r} is not {article} {type_name} value'
     return None
 
 
@@ -204,12 +205,12 @@ class FileBuilder:
         return ServiceDefinition(info, tuple(objects), tuple(queries),
                                  tuple(actions))
 
-    def _field_type(self, path: NodePath, text: str,
-                    package: str) -> FieldType | None:
+    def _field_type(self, path: NodePath, text: str, package: str,
+                    what: str) -> FieldType | None:
         try:
             return parse_field_type(text, package)
         except TypeNameError as exc:
-            self.error(path, str(exc))
+            self.error(path, f'{what}: {exc}')
             return None
 
     def _structure(self, path: NodePath, raw: dict | None,
@@ -230,7 +231,8 @@ class FileBuilder:
                 tpath = fpath
             else:
                 tpath = fpath + ('type',)
-            field_type = self._field_type(tpath, spec['type'], package)
+            field_type = self._field_type(tpath, spec['type'], package,
+                                          f"field '{name}'")
             default = spec.get('default')
             if field_type is not None and 'default' in spec:
                 problem = value_problem(field_type, default)
@@ -249,7 +251,7 @@ class FileBuilder:
                            'name: upper case letters, digits and single '
                            'underscores, starting with a letter', key=True)
             field_type = self._field_type(cpath + ('type',), spec['type'],
-                                          package)
+                                          package, f"constant '{name}'")
             if field_type is None:
                 continue
             if field_type.message is not None or field_type.array is not None:
@@ -284,8 +286,8 @@ class FileBuilder:
         def check_functions(fpath: NodePath, listed: list[str]) -> None:
             for index, fname in enumerate(listed):
                 if fname not in function_names:
-                    self.error(fpath + (index,), f"unknown function '{fname}'"
-                               f"{_choices(function_names)}")
+                    self.error(fpath + (index,), f"unknown function '{fname}'" +
+                               _choices(function_names))
 
         activities = []
         triggered_by: dict[str, str] = {}
@@ -294,9 +296,9 @@ class FileBuilder:
             self.check_identifier(apath, 'activity name', aname)
             period, trigger = body.get('period'), body.get('trigger')
             if (period is None) == (trigger is None):
+                which = 'not both' if period is not None else 'has neither'
                 self.error(apath, f"activity '{aname}' needs either 'period' "
-                           "(periodic) or 'trigger' (a port), not "
-                           f"{'both' if period is not None else 'neither'}",
+                           f"(periodic) or 'trigger' (a port), {which}",
                            key=True)
             if trigger is not None:
                 port = port_by_name.get(trigger)
@@ -306,7 +308,7 @@ class FileBuilder:
                                f"port '{trigger}'{_choices(port_by_name)}")
                 elif (port.pattern, port.role) not in TRIGGERING_PORTS:
                     self.error(apath + ('trigger',),
-                               f"a {port.role.value} {port.pattern.value} port "
+                               f'a {port.role.value} {port.pattern.value} port '
                                f"('{trigger}') delivers nothing that could "
                                'trigger an activity')
                 elif trigger in triggered_by:
@@ -412,15 +414,22 @@ class FileBuilder:
                         self.at(path, key=True))
 
     def _check_python(self, path: NodePath, name: str, code: str) -> None:
-        body = textwrap.indent(textwrap.dedent(code), '    ')
+        dedented = textwrap.dedent(code)
+        body = textwrap.indent(dedented, '    ')
         try:
             ast.parse(f'def {name}(self, *args):\n{body or "    pass"}\n')
         except SyntaxError as exc:
+            # the location of the code is that of its first line (for a
+            # block scalar too); line 1 of the parsed text is the 'def'
             start = self.at(path)
-            # a block scalar (|) starts its text on the line after the key
-            line = start.line + (exc.lineno or 2) - 1
+            lines, kept = code.split('\n'), dedented.split('\n')
+            index = min(max((exc.lineno or 2) - 2, 0), len(lines) - 1)
+            column = start.column
+            if exc.offset and exc.lineno and exc.lineno >= 2:
+                removed = len(lines[index]) - len(kept[index])
+                column += max(exc.offset - 1 - 4, 0) + removed
             self.diagnostics.append(Diagnostic(
-                Location(start.path, line, 1),
+                Location(start.path, start.line + index, column),
                 f"function '{name}': Python syntax error in its code: "
                 f'{exc.msg}'))
 

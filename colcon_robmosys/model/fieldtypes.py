@@ -75,8 +75,9 @@ def parse_field_type(text: str, own_package: str) -> FieldType:
                          array=array, array_size=size)
     if not base[0].isupper():
         raise TypeNameError(
-            f"'{text}' is neither a primitive type nor a message name "
-            '(message names start with a capital letter)')
+            f"'{text}' is neither a primitive type (bool, byte, char, "
+            'float32, float64, int8..uint64, string, wstring) nor a message '
+            'name (message names start with a capital letter)')
     return FieldType(
         message=InterfaceRef(package or own_package, InterfaceKind.MSG, base),
         array=array, array_size=size)

@@ -46,9 +46,10 @@ class LoadedFile:
 class _Builder:
     """Turn a composed YAML node graph into plain data, recording marks."""
 
-    def __init__(self, path: Path, loader: yaml.SafeLoader):
+    def __init__(self, path: Path, loader: yaml.SafeLoader, text: str):
         self._display = str(path)
         self._loader = loader
+        self._lines = text.split('\n')
         self.value_marks: dict[NodePath, Location] = {}
         self.key_marks: dict[NodePath, Location] = {}
         self.diagnostics: list[Diagnostic] = []
@@ -60,8 +61,21 @@ class _Builder:
         mark = node.start_mark
         return Location(self._display, mark.line + 1, mark.column + 1)
 
+    def value_location(self, node: yaml.Node) -> Location:
+        """Return where a value starts: a block scalar at its first line."""
+        if not isinstance(node, yaml.ScalarNode) or \
+                node.style not in ('|', '>'):
+            return self.location(node)
+        # the text of a block scalar starts on the line after its | or >,
+        # so that a line of embedded code maps to a line of the file
+        first = node.start_mark.line + 1
+        indent = next((len(line) - len(line.lstrip(' '))
+                       for line in self._lines[first:node.end_mark.line + 1]
+                       if line.strip()), node.start_mark.column)
+        return Location(self._display, first + 1, indent + 1)
+
     def build(self, node: yaml.Node, path: NodePath) -> Any:
-        self.value_marks.setdefault(path, self.location(node))
+        self.value_marks.setdefault(path, self.value_location(node))
         if id(node) in self._built:
             return self._built[id(node)]
         if isinstance(node, yaml.MappingNode):
@@ -73,7 +87,7 @@ class _Builder:
                 if not isinstance(key, str):
                     self.diagnostics.append(Diagnostic(
                         self.location(key_node),
-                        f"key {key_node.value!r} is read as {_yaml_kind(key)}, "
+                        f'key {key_node.value!r} is read as {_yaml_kind(key)}, '
                         'not as a name: quote it'))
                     continue
                 if key in result:
@@ -93,6 +107,21 @@ class _Builder:
         value = self._loader.construct_object(node, deep=True)
         self._built[id(node)] = value
         return value
+
+
+def _yaml_problem(exc: yaml.MarkedYAMLError) -> str:
+    """Say what PyYAML found, with where the construct it was in began."""
+    problem, context = exc.problem, exc.context
+    if not problem:
+        return context or 'invalid YAML'
+    if context and context.startswith('expected'):
+        # e.g. 'expected a single document in the stream' + 'but found ...'
+        return f'{context}, {problem}'
+    mark = exc.context_mark
+    if context and mark and mark is not exc.problem_mark:
+        return f'{problem} ({context} started at {mark.line + 1}:' \
+            f'{mark.column + 1})'
+    return problem
 
 
 def _yaml_kind(value: Any) -> str:
@@ -115,16 +144,15 @@ def load_text(text: str, path: Path) -> LoadedFile:
         except yaml.MarkedYAMLError as exc:
             mark = exc.problem_mark or exc.context_mark
             line, column = (mark.line + 1, mark.column + 1) if mark else (0, 0)
-            problem = exc.problem or exc.context or 'invalid YAML'
             raise RobmosysError.at(
                 Location(str(path), line, column),
-                f'invalid YAML: {problem}') from None
+                f'invalid YAML: {_yaml_problem(exc)}') from None
         except yaml.YAMLError as exc:
             raise RobmosysError.in_file(path, f'invalid YAML: {exc}') from None
         if node is None:
             raise RobmosysError.at(
                 Location(str(path), 1, 1), 'the model file is empty')
-        builder = _Builder(path, loader)
+        builder = _Builder(path, loader, text)
         try:
             data = builder.build(node, ())
         except yaml.YAMLError as exc:

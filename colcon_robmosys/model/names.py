@@ -14,7 +14,7 @@ FIELD_RE = re.compile(r'^(?!.*__)(?!.*_$)[a-z][a-z0-9_]*$')
 CONSTANT_RE = re.compile(r'^(?!.*__)[A-Z](?:[A-Z0-9_]*[A-Z0-9])?$')
 IDENTIFIER_RE = re.compile(r'^(?!.*__)[A-Za-z][A-Za-z0-9_]*$')
 
-CPP_KEYWORDS = frozenset('''
+CPP_KEYWORDS = frozenset("""
 alignas alignof and and_eq asm atomic_cancel atomic_commit atomic_noexcept
 auto bitand bitor bool break case catch char char8_t char16_t char32_t class
 compl concept const consteval constexpr constinit const_cast continue
@@ -26,13 +26,13 @@ short signed sizeof static static_assert static_cast struct switch
 synchronized template this thread_local throw true try typedef typeid
 typename union unsigned using virtual void volatile wchar_t while xor xor_eq
 final override import module NULL
-'''.split())
+""".split())
 
 PYTHON_KEYWORDS = frozenset(keyword.kwlist) | frozenset(keyword.softkwlist)
 
 #: Members of rclpy's and rclcpp_lifecycle's LifecycleNode (and names the
 #: generated classes use): a function of that name would replace them.
-NODE_MEMBERS = frozenset('''
+NODE_MEMBERS = frozenset("""
 add_managed_entity add_on_set_parameters_callback
 add_post_set_parameters_callback add_pre_set_parameters_callback add_waitable
 clients context count_clients count_publishers count_services
@@ -55,7 +55,7 @@ trigger_activate trigger_cleanup trigger_configure trigger_deactivate
 trigger_shutdown undeclare_parameter wait_for_node waitables now configure
 activate deactivate cleanup shutdown get_current_state
 params ports main
-'''.split())
+""".split())
 
 
 def identifier_problem(name: str) -> str | None:

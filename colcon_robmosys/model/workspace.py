@@ -14,11 +14,11 @@ from colcon_robmosys.model.build import (
     FileBuilder, parameter_value_problem)
 from colcon_robmosys.model.index import InterfaceIndex
 from colcon_robmosys.model.loader import load_file
+from colcon_robmosys.model.qos import qos_incompatibility
 from colcon_robmosys.model.schema import check_structure
 from colcon_robmosys.model.types import (
     Component, InterfaceKind, InterfaceRef, Model, ModelFile, Pattern, Port,
     Role, ServiceDefinition, System, Workspace)
-from colcon_robmosys.model.qos import qos_incompatibility
 
 MODEL_FILE_NAME = 'robmosys.yaml'
 
@@ -260,12 +260,12 @@ class _WorkspaceChecker:
     def _check_connection(self, location: Location, a: Port,
                           b: Port) -> None:
         if a.pattern is not b.pattern:
-            self.error(location, f"cannot connect a {a.pattern.value} port "
+            self.error(location, f'cannot connect a {a.pattern.value} port '
                        f"('{a.name}') to a {b.pattern.value} port "
                        f"('{b.name}')")
             return
         if a.role is b.role:
-            self.error(location, f"cannot connect two {a.role.value} ports "
+            self.error(location, f'cannot connect two {a.role.value} ports '
                        f"('{a.name}', '{b.name}'): a connection joins a "
                        'provided port to a required one')
             return
@@ -282,7 +282,7 @@ class _WorkspaceChecker:
         if writer is not None and reader is not None:
             problem = qos_incompatibility(writer.qos, reader.qos)
             if problem:
-                self.error(location, f"incompatible QoS between "
+                self.error(location, 'incompatible QoS between '
                            f"'{writer.name}' (writer) and '{reader.name}' "
                            f'(reader): {problem}')
 

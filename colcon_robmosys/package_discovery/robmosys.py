@@ -8,6 +8,7 @@ from colcon_core.logging import colcon_logger
 from colcon_core.package_descriptor import PackageDescriptor
 from colcon_core.package_discovery import PackageDiscoveryExtensionPoint
 from colcon_core.plugin_system import satisfies_version
+
 from colcon_robmosys.model import load_workspace
 from colcon_robmosys.model import model_dependencies
 from colcon_robmosys.model.loader import load_file

@@ -6,11 +6,12 @@ from pathlib import Path
 from colcon_core.logging import colcon_logger
 from colcon_core.plugin_system import satisfies_version
 from colcon_core.task import TaskExtensionPoint
+from colcon_ros.task.ament_cmake.build import AmentCmakeBuildTask
+
 from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.generate import generate_package
 from colcon_robmosys.package_discovery.robmosys import METADATA_KEY
 from colcon_robmosys.ros2 import plan_package
-from colcon_ros.task.ament_cmake.build import AmentCmakeBuildTask
 
 logger = colcon_logger.getChild(__name__)
 

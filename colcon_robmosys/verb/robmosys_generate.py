@@ -10,6 +10,7 @@ from colcon_core.package_selection import add_arguments \
 from colcon_core.package_selection import get_packages
 from colcon_core.plugin_system import satisfies_version
 from colcon_core.verb import VerbExtensionPoint
+
 from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.generate import create_missing_user_files
 from colcon_robmosys.generate import generate_package

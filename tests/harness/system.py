@@ -10,10 +10,10 @@ launch_ros would build, and drive the lifecycle through the nodes' real services
 from __future__ import annotations
 
 import ast
-import os
-import time
 from dataclasses import dataclass, field
+import os
 from pathlib import Path
+import time
 from typing import Any, Callable
 
 from harness.ros_env import FASTDDS_PROFILE

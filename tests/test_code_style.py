@@ -1,0 +1,22 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""Our own code meets the style we ask of generated code (flake8, as colcon does)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+import subprocess
+import sys
+
+import pytest
+
+REPO = Path(__file__).resolve().parent.parent
+
+
+def test_flake8():
+    pytest.importorskip('flake8', reason='flake8 is installed by `make test`')
+    result = subprocess.run(
+        [sys.executable, '-m', 'flake8', '--config', str(REPO / 'setup.cfg'),
+         'colcon_robmosys', 'tests', 'tools'],
+        cwd=REPO, capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stdout + result.stderr
