@@ -137,3 +137,19 @@ def test_build_of_a_broken_model_fails_and_writes_nothing(workspace):
     assert f"{model}:19:18: error: activity 'HandleMsg' is triggered by unknown port " \
         "'rMapp' (known: rMap)" in result.stdout + result.stderr
     assert not (workspace / 'build' / 'subscriber' / 'src-gen').exists()
+
+
+def test_colcon_uses_the_installed_package_and_its_templates(tmp_path):
+    """The package works from a non-editable install: templates are package data."""
+    from harness.ros_env import loopback_env, run
+    import sys
+    code = ('import colcon_robmosys\n'
+            'from colcon_robmosys.generate.render import templates_dir\n'
+            'print(colcon_robmosys.__file__)\n'
+            'print(templates_dir())\n')
+    result = run([sys.executable, '-c', code], env=loopback_env(1), cwd=tmp_path, timeout=60)
+    module, templates = map(Path, result.stdout.split())
+    repo = TEST_WORKSPACE.parent
+    assert repo not in module.parents, 'colcon_robmosys must not be imported from the sources'
+    assert templates == module.parent / 'templates'
+    assert (templates / 'component_python' / 'node.py.jinja').is_file()

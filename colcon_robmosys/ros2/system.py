@@ -89,9 +89,14 @@ def _launch_files(system: System, nodes: list[dict[str, Any]],
     variants += [(f'.{n["instance"]}', [n], f'the instance {n["instance"]} '
                   f'of the system {system.name}') for n in nodes]
     for suffix, selected, what in variants:
+        # a file waits only for instances it activates itself: an instance
+        # started by another file, or left unmanaged, would never be seen
+        managed = {n['instance'] for n in selected if n['activate']}
+        selected = [dict(n, activate_after=[a for a in n['after'] if a in managed])
+                    for n in selected]
         context = {
             'banner': banner, 'package': system.package,
-            'params_file': PARAMS_FILE, 'nodes': list(selected),
+            'params_file': PARAMS_FILE, 'nodes': selected,
             'what': what,
         }
         files.append(FileSpec(f'launch/launch{suffix}.py',

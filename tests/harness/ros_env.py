@@ -169,7 +169,7 @@ def run(cmd: Command, *, env: Mapping[str, str], timeout: float,
             _kill_group(proc)
             stdout, stderr = proc.communicate()
             raise subprocess.TimeoutExpired(proc.args, timeout, stdout, stderr) from None
-        except BaseException:
+        except BaseException:  # noqa: B902 - never leave the process group behind
             _kill_group(proc)
             raise
     return subprocess.CompletedProcess(proc.args, proc.returncode, stdout, stderr)
