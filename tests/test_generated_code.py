@@ -138,3 +138,18 @@ def test_launch_files_follow_the_system_model(generated, launch_file):
 def test_params_file_holds_the_overrides(generated):
     params = yaml.safe_load((generated / 'pubsub_system' / 'cfg' / 'params.yaml').read_text())
     assert params == {'/publisher': {'ros__parameters': {'indoor': True, 'noOfScans': 3}}}
+
+
+def test_integer_override_of_a_double_parameter_is_written_as_double(tmp_path):
+    """ROS 2 refuses an integer for a double parameter: the params file says 2.0."""
+    shutil.copytree(TEST_WORKSPACE / 'src', tmp_path / 'src')
+    publisher = tmp_path / 'src' / 'publisher' / 'robmosys.yaml'
+    publisher.write_text(publisher.read_text().replace(
+        '    parameters:\n', '    parameters:\n      gain: {type: double, default: 0.5}\n'))
+    system = tmp_path / 'src' / 'pubsub_system' / 'robmosys.yaml'
+    system.write_text(system.read_text().replace('noOfScans: 3}', 'noOfScans: 3, gain: 2}'))
+    generate_workspace(tmp_path / 'src', tmp_path / 'out')
+    params = (tmp_path / 'out' / 'pubsub_system' / 'cfg' / 'params.yaml').read_text()
+    assert yaml.safe_load(params)['/publisher']['ros__parameters'] == \
+        {'indoor': True, 'noOfScans': 3, 'gain': 2.0}
+    assert 'gain: 2.0' in params

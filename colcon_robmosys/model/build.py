@@ -488,7 +488,9 @@ class FileBuilder:
             instances.append(Instance(
                 iname, body['component'], namespace.rstrip('/'), parameters,
                 body.get('activate', True), tuple(body.get('after', ())),
-                body.get('description', ''), self.at(ipath, key=True)))
+                body.get('description', ''), self.at(ipath, key=True),
+                tuple(self.at(ipath + ('parameters', n), key=True)
+                      for n, _ in parameters)))
         connections = []
         for index, body in enumerate(raw.get('connections', [])):
             cpath = path + ('connections', index)

@@ -19,6 +19,14 @@ NodePath = tuple[str | int, ...]
 #: Model files larger than this are refused before parsing.
 MAX_MODEL_BYTES = 4 * 1024 * 1024
 
+#: How many values aliases may repeat in all: the data is shared, but every
+#: later step (validation, messages, generated files) walks it expanded.
+MAX_ALIASED_VALUES = 100_000
+
+_MERGE_TAG = 'tag:yaml.org,2002:merge'
+_MAP_TAG = 'tag:yaml.org,2002:map'
+_SEQ_TAG = 'tag:yaml.org,2002:seq'
+
 
 @dataclass(frozen=True)
 class LoadedFile:
@@ -56,6 +64,11 @@ class _Builder:
         # aliases share the constructed object instead of expanding anew,
         # which keeps "billion laughs" documents linear in size
         self._built: dict[int, Any] = {}
+        # the expanded number of values of each node built, and the nodes
+        # still being built (an alias to one of them would be recursive)
+        self._sizes: dict[int, int] = {}
+        self._open: set[int] = set()
+        self._aliased = 0
 
     def location(self, node: yaml.Node) -> Location:
         mark = node.start_mark
@@ -75,14 +88,27 @@ class _Builder:
         return Location(self._display, first + 1, indent + 1)
 
     def build(self, node: yaml.Node, path: NodePath) -> Any:
-        self.value_marks.setdefault(path, self.value_location(node))
+        # assigned, not set once: a key may override one a merge key gave
+        self.value_marks[path] = self.value_location(node)
         if id(node) in self._built:
-            return self._built[id(node)]
+            return self._alias(node, path)
+        if isinstance(node, yaml.CollectionNode) and node.tag not in (
+                _MAP_TAG, _SEQ_TAG):
+            # tags of scalars are checked when they are constructed
+            raise RobmosysError.at(
+                self.location(node), 'invalid YAML: could not determine a '
+                f"constructor for the tag '{node.tag}'")
         if isinstance(node, yaml.MappingNode):
             result: Any = {}
             self._built[id(node)] = result
+            self._open.add(id(node))
+            explicit = sum(1 for k, _ in node.value if k.tag != _MERGE_TAG)
             self._loader.flatten_mapping(node)
-            for key_node, value_node in node.value:
+            # merged pairs come first; later ones override them, as YAML
+            # merge keys do, but an explicit key given twice is an error
+            merged = len(node.value) - explicit
+            explicit_keys: set[str] = set()
+            for index, (key_node, value_node) in enumerate(node.value):
                 key = self._loader.construct_object(key_node, deep=True)
                 if not isinstance(key, str):
                     self.diagnostics.append(Diagnostic(
@@ -90,23 +116,50 @@ class _Builder:
                         f'key {key_node.value!r} is read as {_yaml_kind(key)}, '
                         'not as a name: quote it'))
                     continue
-                if key in result:
-                    self.diagnostics.append(Diagnostic(
-                        self.location(key_node), f"duplicate key '{key}'"))
-                    continue
+                if index >= merged:
+                    if key in explicit_keys:
+                        self.diagnostics.append(Diagnostic(
+                            self.location(key_node), f"duplicate key '{key}'"))
+                        continue
+                    explicit_keys.add(key)
                 self.key_marks[path + (key,)] = self.location(key_node)
                 result[key] = self.build(value_node, path + (key,))
+            self._open.discard(id(node))
+            self._sizes[id(node)] = 1 + sum(
+                self._sizes.get(id(v), 0) for _, v in node.value)
             return result
         if isinstance(node, yaml.SequenceNode):
             items: list[Any] = []
             self._built[id(node)] = items
+            self._open.add(id(node))
             for index, item in enumerate(node.value):
                 self.key_marks[path + (index,)] = self.location(item)
                 items.append(self.build(item, path + (index,)))
+            self._open.discard(id(node))
+            self._sizes[id(node)] = 1 + sum(
+                self._sizes.get(id(v), 0) for v in node.value)
             return items
         value = self._loader.construct_object(node, deep=True)
         self._built[id(node)] = value
+        self._sizes[id(node)] = 1
         return value
+
+    def _alias(self, node: yaml.Node, path: NodePath) -> Any:
+        """Return the data of a node met again, through an alias."""
+        # a node knows where it was defined, not where an alias repeats it:
+        # point at the key or the list that holds the alias
+        where = self.key_marks.get(path, self.location(node))
+        if path and isinstance(path[-1], int):
+            where = self.value_marks.get(path[:-1], where)
+        if id(node) in self._open:
+            raise RobmosysError.at(
+                where, 'an alias refers to a value that contains it')
+        self._aliased += self._sizes[id(node)]
+        if self._aliased > MAX_ALIASED_VALUES:
+            raise RobmosysError.at(
+                where, f'aliases repeat more than {MAX_ALIASED_VALUES} '
+                'values in all: the model would be too large once expanded')
+        return self._built[id(node)]
 
 
 def _yaml_problem(exc: yaml.MarkedYAMLError) -> str:
@@ -137,7 +190,14 @@ def load_text(text: str, path: Path) -> LoadedFile:
 
     :raises RobmosysError: for YAML syntax errors and ambiguous keys
     """
-    loader = yaml.SafeLoader(text)
+    try:
+        loader = yaml.SafeLoader(text)
+    except yaml.reader.ReaderError as exc:
+        # the reader checks the whole text at once, before any parsing
+        raise RobmosysError.at(
+            _offset_location(path, text, exc.position),
+            f'invalid YAML: the character U+{exc.character:04X} is not '
+            'allowed in a YAML file') from None
     try:
         try:
             node = loader.get_single_node()
@@ -188,6 +248,16 @@ def load_file(path: Path) -> LoadedFile:
     try:
         text = raw.decode('utf-8')
     except UnicodeDecodeError as exc:
-        raise RobmosysError.in_file(
-            path, f'the model file is not UTF-8 (byte {exc.start})') from None
+        good = raw[:exc.start].decode('utf-8')
+        raise RobmosysError.at(
+            _offset_location(path, good, len(good)),
+            f'the model file is not UTF-8: byte 0x{raw[exc.start]:02x} '
+            'cannot be decoded (save the file as UTF-8)') from None
     return load_text(text, path)
+
+
+def _offset_location(path: Path, text: str, offset: int) -> Location:
+    """Return the location of a character of the text."""
+    line_start = text.rfind('\n', 0, offset) + 1
+    return Location(str(path), text.count('\n', 0, offset) + 1,
+                    offset - line_start + 1)

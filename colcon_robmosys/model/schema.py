@@ -53,10 +53,20 @@ def _describe(value: Any) -> str:
 
 
 def _subject(path: tuple) -> str:
-    for part in reversed(path):
-        if isinstance(part, str):
-            return f"'{part}'"
+    for depth in range(len(path) - 1, -1, -1):
+        if isinstance(path[depth], str):
+            if depth < len(path) - 1:
+                return f"item {path[depth + 1] + 1} of '{path[depth]}'"
+            return f"'{path[depth]}'"
     return 'the model'
+
+
+def _pattern_hint(schema_: dict[str, Any]) -> str:
+    """Say what a string must look like, as the schema explains it."""
+    # patternErrorMessage is what VS Code and yaml-language-server show
+    text = schema_.get('patternErrorMessage') or schema_.get(
+        'description') or f"Expected a match of {schema_.get('pattern')}"
+    return f'{text[0].lower()}{text[1:]}'.rstrip('.')
 
 
 def _message(error: ValidationError) -> tuple[str, bool]:
@@ -84,14 +94,17 @@ def _message(error: ValidationError) -> tuple[str, bool]:
     if validator == 'const':
         return (f'{_subject(path)} must be {error.validator_value}, not '
                 f'{_describe(error.instance)}'), False
+    if validator == 'pattern' and 'propertyNames' in \
+            error.absolute_schema_path:
+        return (f"'{error.instance}' is not a valid name: "
+                f'{_pattern_hint(error.schema)}'), True
     if validator == 'pattern':
-        what = error.schema.get('description', f'match {error.validator_value}')
         return (f'{_subject(path)}: {_describe(error.instance)} is not valid: '
-                f'{what[0].lower()}{what[1:]}'), False
+                f'{_pattern_hint(error.schema)}'), False
     if validator == 'propertyNames':
         return (f"'{error.instance}' is not a valid name: "
                 f"{error.schema.get('description', 'invalid name')}"), True
-    if validator in ('minItems', 'minProperties'):
+    if validator in ('minItems', 'minProperties', 'minLength'):
         return f'{_subject(path)} must not be empty', False
     if validator in ('minimum', 'exclusiveMinimum'):
         bound = error.validator_value

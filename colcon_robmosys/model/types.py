@@ -326,6 +326,8 @@ class Instance:
     after: tuple[str, ...]
     description: str
     location: Location
+    #: where the key of each entry of ``parameters`` stands
+    parameter_locations: tuple[Location, ...] = ()
 
 
 @dataclass(frozen=True)

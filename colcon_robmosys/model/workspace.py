@@ -71,18 +71,35 @@ def load_workspace(paths: Iterable[Path],
     reports every problem of the workspace.
     """
     files, diagnostics, broken = [], [], set()
+    broken_packages: set[str] = set()
     for path in sorted(set(paths)):
         try:
             files.append(load_model_file(path))
         except RobmosysError as exc:
             diagnostics.extend(exc.diagnostics)
             broken.add(str(path))
+            broken_packages |= _declared_packages(path)
     checker = _WorkspaceChecker(
-        files, index or InterfaceIndex.from_environment())
+        files, index or InterfaceIndex.from_environment(), broken_packages)
     checker.check()
     diagnostics.extend(checker.diagnostics)
     return LoadResult(Workspace(tuple(files)), sorted(set(diagnostics)),
                       broken)
+
+
+def _declared_packages(path: Path) -> set[str]:
+    """Return the packages a broken model file seems to declare."""
+    try:
+        data = load_file(path).data
+    except RobmosysError:
+        return set()
+    if not isinstance(data, dict):
+        return set()
+    return {model['package']
+            for kind in ('service_definitions', 'components', 'systems')
+            if isinstance(data.get(kind), list)
+            for model in data[kind]
+            if isinstance(model, dict) and isinstance(model.get('package'), str)}
 
 
 def find_model_files(base_paths: Sequence[Path]) -> list[Path]:
@@ -101,9 +118,13 @@ def find_model_files(base_paths: Sequence[Path]) -> list[Path]:
 class _WorkspaceChecker:
     """Checks that need more than one model."""
 
-    def __init__(self, files: Sequence[ModelFile], index: InterfaceIndex):
+    def __init__(self, files: Sequence[ModelFile], index: InterfaceIndex,
+                 broken_packages: Iterable[str] = ()):
         self.files = files
         self.index = index
+        # packages of files with errors of their own: what refers to them
+        # is not checked, rather than reported as unknown
+        self.broken_packages = frozenset(broken_packages)
         self.diagnostics: list[Diagnostic] = []
         self.models: dict[str, Model] = {}
         self.definitions: dict[str, ServiceDefinition] = {}
@@ -142,6 +163,8 @@ class _WorkspaceChecker:
     # interfaces ---------------------------------------------------------
 
     def _interface_problem(self, ref: InterfaceRef) -> str | None:
+        if ref.package in self.broken_packages:
+            return None
         definition = self.definitions.get(ref.package)
         if definition is not None:
             names = {
@@ -194,6 +217,7 @@ class _WorkspaceChecker:
                     self.error(port.location, f"port '{port.name}': {problem}")
         for package in component.info.depends:
             if package not in self.models and \
+                    package not in self.broken_packages and \
                     not self.index.has_package(package):
                 self.error(component.info.location,
                            f"component '{component.name}' depends on "
@@ -206,6 +230,9 @@ class _WorkspaceChecker:
         node_names: dict[str, str] = {}
         for instance in system.instances:
             component = self.components.get(instance.component)
+            if component is None and \
+                    instance.component in self.broken_packages:
+                continue
             if component is None:
                 what = ('is not a component'
                         if instance.component in self.models
@@ -223,10 +250,17 @@ class _WorkspaceChecker:
             node_names[fqn] = instance.name
             self._check_overrides(instance, component)
             for after in instance.after:
-                if system.instance(after) is None:
+                other = system.instance(after)
+                if other is None:
                     self.error(instance.location,
                                f"instance '{instance.name}' is activated "
                                f"after unknown instance '{after}'")
+                elif not other.activate or not instance.activate:
+                    unmanaged = instance if not instance.activate else other
+                    self.error(instance.location,
+                               f"instance '{instance.name}' is activated "
+                               f"after '{after}', but '{unmanaged.name}' is "
+                               'not activated by the system (activate: false)')
         connected: set[tuple[str, str]] = set()
         for connection in system.connections:
             ends = []
@@ -288,11 +322,13 @@ class _WorkspaceChecker:
 
     def _check_overrides(self, instance, component: Component) -> None:
         parameters = {p.name: p for p in component.parameters}
-        for name, value in instance.parameters:
+        locations = instance.parameter_locations or \
+            (instance.location,) * len(instance.parameters)
+        for (name, value), location in zip(instance.parameters, locations):
             parameter = parameters.get(name)
             if parameter is None:
                 known = ', '.join(sorted(parameters)) or 'none'
-                self.error(instance.location,
+                self.error(location,
                            f"instance '{instance.name}': component "
                            f"'{component.name}' has no parameter '{name}' "
                            f'(its parameters: {known})')
@@ -303,7 +339,7 @@ class _WorkspaceChecker:
                 problem = (f'{value} is out of the range '
                            f'[{parameter.range.start}, {parameter.range.end}]')
             if problem:
-                self.error(instance.location,
+                self.error(location,
                            f"instance '{instance.name}', parameter '{name}': "
                            f'{problem}')
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Sequence
 
+from colcon_robmosys.model.build import freeze_parameter_value
 from colcon_robmosys.model.types import (
     Component, Instance, Pattern, Role, System, Workspace)
 from colcon_robmosys.ros2.common import banner_context, package_xml_context
@@ -106,9 +107,18 @@ def _launch_files(system: System, nodes: list[dict[str, Any]],
     return files
 
 
-def _parameters(system: System) -> list[dict[str, Any]]:
-    return [{'fqn': node_fqn(i), 'values': list(i.parameters)}
-            for i in system.instances if i.parameters]
+def _parameters(system: System, components: dict[str, Component]
+                ) -> list[dict[str, Any]]:
+    nodes = []
+    for instance in system.instances:
+        if not instance.parameters:
+            continue
+        types = {p.name: p.type for p in components[instance.name].parameters}
+        # ROS 2 refuses an integer for a parameter declared as double
+        values = [(name, freeze_parameter_value(types[name], value))
+                  for name, value in instance.parameters]
+        nodes.append({'fqn': node_fqn(instance), 'values': values})
+    return nodes
 
 
 def _diagram(system: System, components: dict[str, Component],
@@ -155,7 +165,8 @@ def plan_system(system: System, workspace: Workspace) -> PackagePlan:
     files = _launch_files(system, nodes, banner)
     files += [
         FileSpec(PARAMS_FILE, 'system/params.yaml.jinja',
-                 {'banner': banner, 'nodes': _parameters(system)}),
+                 {'banner': banner,
+                  'nodes': _parameters(system, components)}),
         FileSpec(f'doc/{system.package}.dot', 'system/diagram.dot.jinja',
                  {'banner': banner,
                   **_diagram(system, components, topics)}),
