@@ -25,16 +25,10 @@ import pytest
 
 from colcon_robmosys.model import load_workspace
 from colcon_robmosys.model.index import InterfaceIndex
+from harness.fake_ament import fake_ament_index
 
 MODELS = Path(__file__).parent / 'models'
 INVALID = sorted((MODELS / 'invalid').glob('*.yaml'))
-
-#: The interfaces a ROS 2 install would provide, as far as the models use them.
-INSTALLED = {
-    'std_msgs': ['msg/Header.msg', 'msg/String.msg'],
-    'geometry_msgs': ['msg/Pose.msg'],
-    'example_interfaces': ['srv/AddTwoInts.srv', 'action/Fibonacci.action'],
-}
 
 _DIRECTIVE = re.compile(r'^# (expect|with): (.+)$', re.MULTILINE)
 
@@ -42,16 +36,7 @@ _DIRECTIVE = re.compile(r'^# (expect|with): (.+)$', re.MULTILINE)
 @pytest.fixture(scope='module')
 def index(tmp_path_factory) -> InterfaceIndex:
     """Return an index of a fake ament prefix, so that no ROS is needed."""
-    prefix = tmp_path_factory.mktemp('ament_prefix')
-    markers = prefix / 'share' / 'ament_index' / 'resource_index' / 'packages'
-    markers.mkdir(parents=True)
-    for package, files in INSTALLED.items():
-        (markers / package).write_text('')
-        for name in files:
-            path = prefix / 'share' / package / name
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_text('')
-    return InterfaceIndex([prefix])
+    return fake_ament_index(tmp_path_factory.mktemp('ament_prefix'))
 
 
 def _directives(path: Path) -> tuple[set[str], list[Path]]:

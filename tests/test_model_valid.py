@@ -15,43 +15,23 @@ import re
 import pytest
 
 from colcon_robmosys.model import load_model_file, load_workspace
-from colcon_robmosys.model.index import InterfaceIndex
 from colcon_robmosys.model.qos import resolve_qos, ResolvedQoS
 from colcon_robmosys.model.types import (
     Component, InterfaceKind, InterfaceRef, Language, Maintainer,
     ParameterRange, Pattern, Role, ServiceDefinition, Structure, System,
     Workspace)
+from harness.fake_ament import fake_ament_index
 
 ROOT = Path(__file__).resolve().parent.parent
 VALID = sorted((ROOT / 'tests' / 'models' / 'valid').glob('*.yaml'))
 EXAMPLES = sorted((ROOT / 'test_workspace' / 'src').glob('*/robmosys.yaml'))
 DOCS = ROOT / 'docs' / 'model-format.md'
 
-#: The interfaces a ROS 2 install would provide, as far as the models use them.
-INSTALLED = {
-    'std_msgs': ['msg/Header.msg', 'msg/String.msg'],
-    'geometry_msgs': ['msg/Pose.msg'],
-    'example_interfaces': ['srv/AddTwoInts.srv', 'action/Fibonacci.action'],
-    'builtin_interfaces': ['msg/Time.msg'],
-}
-
-
-def _fake_prefix(prefix: Path) -> InterfaceIndex:
-    markers = prefix / 'share' / 'ament_index' / 'resource_index' / 'packages'
-    markers.mkdir(parents=True)
-    for package, files in INSTALLED.items():
-        (markers / package).write_text('')
-        for name in files:
-            path = prefix / 'share' / package / name
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_text('')
-    return InterfaceIndex([prefix])
-
 
 @pytest.fixture(scope='module')
 def loaded(tmp_path_factory):
     """Return the load result of the valid corpus, as one workspace."""
-    index = _fake_prefix(tmp_path_factory.mktemp('ament_prefix'))
+    index = fake_ament_index(tmp_path_factory.mktemp('ament_prefix'))
     return load_workspace(VALID, index)
 
 
@@ -394,7 +374,7 @@ def test_defaults_shared_by_the_models_of_a_file(workspace):
 # the example workspace ----------------------------------------------------
 
 def test_example_workspace(tmp_path):
-    result = load_workspace(EXAMPLES, _fake_prefix(tmp_path))
+    result = load_workspace(EXAMPLES, fake_ament_index(tmp_path))
     assert result.diagnostics == []
     workspace = result.workspace
     assert sorted(m.package for m in workspace.models) == [
@@ -454,7 +434,7 @@ def test_documented_models(tmp_path):
         path.parent.mkdir(parents=True)
         path.write_text(block)
         paths.append(path)
-    result = load_workspace(paths, _fake_prefix(tmp_path / 'prefix'))
+    result = load_workspace(paths, fake_ament_index(tmp_path / 'prefix'))
     assert [str(d) for d in result.diagnostics] == []
     assert {m.package for m in result.workspace.models} >= {
         'grid_interfaces', 'grid_publisher', 'grid_viewer', 'grid_system',
