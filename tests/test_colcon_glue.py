@@ -149,7 +149,8 @@ def test_colcon_uses_the_installed_package_and_its_templates(tmp_path):
             'print(templates_dir())\n')
     result = run([sys.executable, '-c', code], env=loopback_env(1), cwd=tmp_path, timeout=60)
     module, templates = map(Path, result.stdout.split())
-    repo = TEST_WORKSPACE.parent
-    assert repo not in module.parents, 'colcon_robmosys must not be imported from the sources'
+    assert module.parent != TEST_WORKSPACE.parent / 'colcon_robmosys', \
+        'colcon_robmosys must not be imported from the sources'
+    assert Path(sys.prefix) in module.parents
     assert templates == module.parent / 'templates'
     assert (templates / 'component_python' / 'node.py.jinja').is_file()
