@@ -154,3 +154,11 @@ def test_colcon_uses_the_installed_package_and_its_templates(tmp_path):
     assert Path(sys.prefix) in module.parents
     assert templates == module.parent / 'templates'
     assert (templates / 'component_python' / 'node.py.jinja').is_file()
+
+
+def test_build_of_a_model_that_is_not_yaml_fails_with_its_error(workspace):
+    model = workspace / 'src' / 'subscriber' / 'robmosys.yaml'
+    model.write_text('robmosys: 1\ncomponents: [\n')
+    result = colcon(['build', '--packages-select', 'subscriber'], cwd=workspace)
+    assert result.returncode != 0
+    assert f'{model}:3:1: error: invalid YAML' in result.stdout + result.stderr

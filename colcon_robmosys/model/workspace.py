@@ -78,7 +78,7 @@ def load_workspace(paths: Iterable[Path],
         except RobmosysError as exc:
             diagnostics.extend(exc.diagnostics)
             broken.add(str(path))
-            broken_packages |= _declared_packages(path)
+            broken_packages |= {name for name, _ in declared_packages(path)}
     checker = _WorkspaceChecker(
         files, index or InterfaceIndex.from_environment(), broken_packages)
     checker.check()
@@ -87,19 +87,27 @@ def load_workspace(paths: Iterable[Path],
                       broken)
 
 
-def _declared_packages(path: Path) -> set[str]:
-    """Return the packages a broken model file seems to declare."""
+#: The package kind of each list of models in a file.
+MODEL_KINDS = {'service_definitions': 'interfaces', 'components': 'component',
+               'systems': 'system'}
+
+
+def declared_packages(path: Path) -> list[tuple[str, str]]:
+    """Return the packages, and their kinds, a broken model file declares.
+
+    As much as can be read: nothing if the file is not even YAML.
+    """
     try:
         data = load_file(path).data
     except RobmosysError:
-        return set()
+        return []
     if not isinstance(data, dict):
-        return set()
-    return {model['package']
-            for kind in ('service_definitions', 'components', 'systems')
-            if isinstance(data.get(kind), list)
-            for model in data[kind]
-            if isinstance(model, dict) and isinstance(model.get('package'), str)}
+        return []
+    return [(model['package'], kind)
+            for key, kind in MODEL_KINDS.items()
+            if isinstance(data.get(key), list)
+            for model in data[key]
+            if isinstance(model, dict) and isinstance(model.get('package'), str)]
 
 
 def find_model_files(base_paths: Sequence[Path]) -> list[Path]:

@@ -11,9 +11,9 @@ from colcon_core.plugin_system import satisfies_version
 
 from colcon_robmosys.model import load_workspace
 from colcon_robmosys.model import model_dependencies
-from colcon_robmosys.model.loader import load_file
 from colcon_robmosys.model.types import Component
 from colcon_robmosys.model.types import ServiceDefinition
+from colcon_robmosys.model.workspace import declared_packages
 from colcon_robmosys.package_identification.robmosys import \
     RobmosysPackageIdentification
 
@@ -86,20 +86,5 @@ def _descriptor(model_file, name, kind, dependencies, result):
 
 def _declared_packages(model_file):
     """Name the packages of a broken model file as far as it can be read."""
-    fallback = [(Path(model_file).parent.name, 'invalid')]
-    try:
-        data = load_file(Path(model_file)).data
-    except Exception:  # noqa: B902 - any failure: the build reports it
-        return fallback
-    names = []
-    if isinstance(data, dict):
-        for key, kind in (('service_definitions', 'interfaces'),
-                          ('components', 'component'),
-                          ('systems', 'system')):
-            models = data.get(key)
-            for model in models if isinstance(models, list) else ():
-                name = model.get('package') if isinstance(model, dict) \
-                    else None
-                if isinstance(name, str) and name:
-                    names.append((name, kind))
-    return names or fallback
+    return declared_packages(Path(model_file)) or [
+        (Path(model_file).parent.name, 'invalid')]
