@@ -29,8 +29,10 @@ class LoadResult:
 
     workspace: Workspace
     diagnostics: list[Diagnostic] = field(default_factory=list)
-    #: model files whose own content is broken
-    broken_files: set[str] = field(default_factory=set)
+    #: model files whose own content is broken -> the packages, with their
+    #: kinds, that each seems to declare
+    broken_files: dict[str, list[tuple[str, str]]] = field(
+        default_factory=dict)
 
     @property
     def errors(self) -> list[Diagnostic]:
@@ -70,17 +72,17 @@ def load_workspace(paths: Iterable[Path],
     Every file is loaded even when others are broken, so that one run
     reports every problem of the workspace.
     """
-    files, diagnostics, broken = [], [], set()
-    broken_packages: set[str] = set()
+    files, diagnostics = [], []
+    broken: dict[str, list[tuple[str, str]]] = {}
     for path in sorted(set(paths)):
         try:
             files.append(load_model_file(path))
         except RobmosysError as exc:
             diagnostics.extend(exc.diagnostics)
-            broken.add(str(path))
-            broken_packages |= {name for name, _ in declared_packages(path)}
+            broken[str(path)] = declared_packages(path)
     checker = _WorkspaceChecker(
-        files, index or InterfaceIndex.from_environment(), broken_packages)
+        files, index or InterfaceIndex.from_environment(),
+        (name for declared in broken.values() for name, _ in declared))
     checker.check()
     diagnostics.extend(checker.diagnostics)
     return LoadResult(Workspace(tuple(files)), sorted(set(diagnostics)),

@@ -13,7 +13,6 @@ from colcon_robmosys.model import load_workspace
 from colcon_robmosys.model import model_dependencies
 from colcon_robmosys.model.types import Component
 from colcon_robmosys.model.types import ServiceDefinition
-from colcon_robmosys.model.workspace import declared_packages
 from colcon_robmosys.package_identification.robmosys import \
     RobmosysPackageIdentification
 
@@ -65,10 +64,13 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
             descriptors.add(_descriptor(
                 model.info.model_file, model.package, kind,
                 model_dependencies(model), result))
-        for model_file in sorted(result.broken_files):
-            # the build of these packages reports the errors and fails
-            for name, kind in _declared_packages(model_file):
-                descriptors.add(_descriptor(model_file, name, kind, (), result))
+        for model_file, declared in sorted(result.broken_files.items()):
+            # the build of these packages reports the errors and fails;
+            # a file too broken to name any is named after its folder
+            for name, kind in declared or [
+                    (Path(model_file).parent.name, 'invalid')]:
+                descriptors.add(
+                    _descriptor(model_file, name, kind, (), result))
         return descriptors
 
 
@@ -82,9 +84,3 @@ def _descriptor(model_file, name, kind, dependencies, result):
     desc.metadata[METADATA_KEY] = result
     desc.metadata['robmosys_model_file'] = str(model_file)
     return desc
-
-
-def _declared_packages(model_file):
-    """Name the packages of a broken model file as far as it can be read."""
-    return declared_packages(Path(model_file)) or [
-        (Path(model_file).parent.name, 'invalid')]

@@ -53,7 +53,7 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
         errors = [e for e in result.errors
                   if e.location.path in model_files] or [
             e for f in model_files for e in result.errors_of(f)]
-        broken = model_files & result.broken_files
+        broken = model_files & result.broken_files.keys()
         if errors or broken:
             # the discovery has logged every diagnostic already
             print(f'{len(errors)} error(s) in the selected models',
