@@ -51,8 +51,7 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
         result = selected[0].metadata[METADATA_KEY]
         model_files = {d.metadata['robmosys_model_file'] for d in selected}
         errors = [e for e in result.errors
-                  if e.location.path in model_files] or [
-            e for f in model_files for e in result.errors_of(f)]
+                  if e.location.path in model_files]
         broken = model_files & result.broken_files.keys()
         if errors or broken:
             # the discovery has logged every diagnostic already
