@@ -17,7 +17,7 @@ from colcon_robmosys.model.fieldtypes import (
 from colcon_robmosys.model.loader import LoadedFile, NodePath
 from colcon_robmosys.model.types import (
     Action, Activity, CommunicationObject, Component, Connection, Constant,
-    Field, FieldType, Function, Instance, InterfaceKind, Language,
+    Event, Field, FieldType, Function, Instance, InterfaceKind, Language,
     LIFECYCLE_TRANSITIONS, Maintainer, ModelFile, PackageInfo, Parameter,
     ParameterRange, Pattern, PATTERN_INTERFACE, Port, PortRef, QoS, Query,
     Role, ServiceDefinition, Structure, System)
@@ -199,11 +199,21 @@ class FileBuilder:
                                   package)
                   for part in ('goal', 'result', 'feedback')),
                 self.at(apath, key=True)))
-        if not (objects or queries or actions):
+        events = []
+        for name, body in raw.get('events', {}).items():
+            named('events', name)
+            epath = path + ('events', name)
+            events.append(Event(
+                name, body.get('description', ''),
+                *(self._structure(epath + (part,), body.get(part, {}),
+                                  package)
+                  for part in ('activation', 'event')),
+                self.at(epath, key=True)))
+        if not (objects or queries or actions or events):
             self.error(path, f"service definition '{package}' defines no "
-                       'communication object, query or action')
+                       'communication object, query, action or event')
         return ServiceDefinition(info, tuple(objects), tuple(queries),
-                                 tuple(actions))
+                                 tuple(actions), tuple(events))
 
     def _field_type(self, path: NodePath, text: str, package: str,
                     what: str) -> FieldType | None:
@@ -373,21 +383,6 @@ class FileBuilder:
         except TypeNameError as exc:
             self.error(path + ('type',), f"port '{name}': {exc}")
             type_ = parse_interface(_strip_kind(raw['type']), kind)
-        activation = None
-        if 'activation' in raw:
-            if pattern is not Pattern.EVENT:
-                self.error(path + ('activation',), f"port '{name}': only event "
-                           "ports take an 'activation' type")
-            else:
-                try:
-                    activation = parse_interface(raw['activation'],
-                                                 InterfaceKind.MSG)
-                except TypeNameError as exc:
-                    self.error(path + ('activation',), f"port '{name}': {exc}")
-        elif pattern is Pattern.EVENT:
-            self.error(path, f"event port '{name}' needs an 'activation' type "
-                       'for the parameter a client activates it with',
-                       key=True)
         qos_raw = raw.get('qos', {})
         if qos_raw and pattern in (Pattern.QUERY, Pattern.ACTION):
             self.error(path + ('qos',), f"port '{name}': {pattern.value} ports "
@@ -397,7 +392,7 @@ class FileBuilder:
         if qos.history == 'keep_all' and qos.depth is not None:
             self.error(path + ('qos', 'depth'), f"port '{name}': 'depth' has no "
                        "meaning with history 'keep_all'")
-        return Port(name, pattern, role, type_, activation, qos,
+        return Port(name, pattern, role, type_, qos,
                     raw.get('description', ''), self.at(path, key=True))
 
     def _function(self, path: NodePath, name: str, raw: dict | None,
