@@ -93,8 +93,8 @@ def test_generate_creates_missing_implementation_only(workspace):
     generated = workspace / 'gen' / 'subscriber'
     assert (generated / 'src-skel' / 'subscriber' / 'Subscriber_impl_skel.py').is_file()
     assert (generated / 'subscriber' / 'Subscriber_impl.py').read_bytes() == mine
-    assert sorted(p.name for p in (workspace / 'gen').iterdir()) == [
-        'publisher', 'pubsub_system', 'simple_msgs', 'subscriber']
+    assert {'publisher', 'pubsub_system', 'simple_msgs', 'subscriber'} <= {
+        p.name for p in (workspace / 'gen').iterdir()}
 
 
 def test_generate_honours_package_selection(workspace):

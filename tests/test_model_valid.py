@@ -379,8 +379,10 @@ def test_example_workspace(tmp_path):
     result = load_workspace(EXAMPLES, fake_ament_index(tmp_path))
     assert result.diagnostics == []
     workspace = result.workspace
-    assert sorted(m.package for m in workspace.models) == [
-        'publisher', 'pubsub_system', 'simple_msgs', 'subscriber']
+    assert {'publisher', 'pubsub_system', 'simple_msgs', 'subscriber', 'example_msgs',
+            'sender', 'receiver', 'add_server', 'add_client', 'fibonacci_server',
+            'fibonacci_client', 'level_sensor', 'level_watcher',
+            'examples_system'} <= {m.package for m in workspace.models}
 
     msgs = _model(workspace, 'simple_msgs', ServiceDefinition)
     ogm, map_ = msgs.communication_objects

@@ -17,7 +17,7 @@ from colcon_robmosys.model.fieldtypes import (
 from colcon_robmosys.model.loader import LoadedFile, NodePath
 from colcon_robmosys.model.types import (
     Action, Activity, CommunicationObject, Component, Connection, Constant,
-    Event, Field, FieldType, Function, Instance, InterfaceKind, Language,
+    Event, Field, FieldType, Function, Instance, Language,
     LIFECYCLE_TRANSITIONS, Maintainer, ModelFile, PackageInfo, Parameter,
     ParameterRange, Pattern, PATTERN_INTERFACE, Port, PortRef, QoS, Query,
     Role, ServiceDefinition, Structure, System)
@@ -33,12 +33,16 @@ TRIGGERING_PORTS = {
     (Pattern.QUERY, Role.PROVIDED): 'each request, returning the answer',
     (Pattern.QUERY, Role.REQUIRED): 'each answer of an asynchronous call',
     (Pattern.EVENT, Role.REQUIRED): 'each event that fires',
+    (Pattern.EVENT, Role.PROVIDED): 'the condition of each activation',
     (Pattern.ACTION, Role.PROVIDED): 'each goal, returning the result',
     (Pattern.ACTION, Role.REQUIRED): 'each result of a goal sent',
 }
 
 #: Ports that cannot work without an activity that handles their input.
 NEEDS_HANDLER = {(Pattern.QUERY, Role.PROVIDED), (Pattern.ACTION, Role.PROVIDED)}
+
+#: Ports whose activity is one function that returns something.
+ONE_FUNCTION = NEEDS_HANDLER | {(Pattern.EVENT, Role.PROVIDED)}
 
 PARAMETER_KINDS: dict[str, Callable[[Any], bool]] = {
     'bool': lambda v: isinstance(v, bool),
@@ -203,6 +207,12 @@ class FileBuilder:
         for name, body in raw.get('events', {}).items():
             named('events', name)
             epath = path + ('events', name)
+            if 'single' in ((body.get('activation') or {}).get('fields') or
+                            {}):
+                self.error(epath + ('activation', 'fields', 'single'),
+                           f"event '{name}': the activation field 'single' "
+                           'is reserved: it carries the mode of an '
+                           'activation (single or continuous)', key=True)
             events.append(Event(
                 name, body.get('description', ''),
                 *(self._structure(epath + (part,), body.get(part, {}),
@@ -327,7 +337,7 @@ class FileBuilder:
                                f"'{triggered_by[trigger]}'")
                 else:
                     triggered_by[trigger] = aname
-                    if (port.pattern, port.role) in NEEDS_HANDLER and \
+                    if (port.pattern, port.role) in ONE_FUNCTION and \
                             len(body['functions']) != 1:
                         self.error(apath + ('functions',),
                                    f"activity '{aname}' answers port "

@@ -215,7 +215,7 @@ class _WorkspaceChecker:
                     f"port names an entry of 'events' of '{definition.package}'")
         if port.pattern is Pattern.ACTION and port.type.name in events:
             return (f"'{port.type}' is an event: name it from an event port "
-                    "(pattern: event)")
+                    '(pattern: event)')
         return None
 
     def _check_definition(self, definition: ServiceDefinition) -> None:

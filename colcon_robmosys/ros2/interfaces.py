@@ -88,10 +88,13 @@ def plan_interfaces(definition: ServiceDefinition) -> PackagePlan:
         # activation) and feedback (each event) = event
         path = f'action/{event.name}.action'
         interface_files.append(path)
+        goal = _structure(event.activation, package)
+        goal['fields'].append({'line': 'bool single false', 'comment': (
+            'true: the first event ends the activation (the result); '
+            'false: events until the client cancels')})
         files.append(FileSpec(path, 'interfaces/interface.jinja', {
             'banner': banner, 'description': event.description,
-            'parts': [_structure(s, package) for s in
-                      (event.activation, event.event, event.event)],
+            'parts': [goal] + [_structure(event.event, package)] * 2,
         }))
     depends = model_dependencies(definition)
     if (definition.actions or definition.events) and 'action_msgs' not in depends:
