@@ -215,9 +215,10 @@ class FileBuilder:
                            'activation (single or continuous)', key=True)
             events.append(Event(
                 name, body.get('description', ''),
-                *(self._structure(epath + (part,), body.get(part, {}),
-                                  package)
-                  for part in ('activation', 'event')),
+                self._structure(epath + ('activation',),
+                                body.get('activation', {}), package),
+                self._structure(epath + ('event',), body.get('event', {}),
+                                package),
                 self.at(epath, key=True)))
         if not (objects or queries or actions or events):
             self.error(path, f"service definition '{package}' defines no "
