@@ -89,9 +89,9 @@ def test_user_code_survives_and_the_skeleton_follows_the_model(tmp_path, domain_
     output = result.stdout + result.stderr
     skeleton = tmp_path / 'build' / 'echo' / 'src-gen' / 'src-skel' / 'echo' / 'Echo_impl_skel.py'
     line = mine.decode().splitlines().index('class Echo_impl(Echo):') + 1
-    assert f"{impl}:{line}:1: error: class 'Echo_impl' lacks the function 'fCount' of the model; " \
-        'the skeleton src-skel/echo/Echo_impl_skel.py of the package shows what the model ' \
-        f'asks for: {skeleton}' in output, output
+    assert f"{impl}:{line}:1: error: class 'Echo_impl' lacks the function 'fCount' of the " \
+        'model; the skeleton src-skel/echo/Echo_impl_skel.py of the package shows what the ' \
+        f'model asks for: {skeleton}' in output, output
     assert 'Traceback' not in output
     assert impl.read_bytes() == mine
     text = skeleton.read_text()
