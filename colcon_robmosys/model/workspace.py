@@ -327,8 +327,8 @@ class _WorkspaceChecker:
                           b: Port) -> bool:
         """Check that two ports fit; return whether they do."""
         if a.pattern is not b.pattern:
-            self.error(location, f'cannot connect a {a.pattern.value} port '
-                       f"('{a.name}') to a {b.pattern.value} port "
+            self.error(location, f'cannot connect {_a(a.pattern.value)} '
+                       f"port ('{a.name}') to {_a(b.pattern.value)} port "
                        f"('{b.name}')")
             return False
         if a.role is b.role:
@@ -430,6 +430,11 @@ class _WorkspaceChecker:
                     assert instance is not None
                     self.error(instance.location, 'activation order cycle: ' +
                                ' -> '.join(cycle + [cycle[0]]))
+
+
+def _a(word: str) -> str:
+    """Return a word with its indefinite article."""
+    return f"{'an' if word[0] in 'aeiou' else 'a'} {word}"
 
 
 @dataclass
