@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterable, Sequence
+from typing import Iterable, Iterator, Sequence
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
 from colcon_robmosys.model.build import (
@@ -18,8 +18,9 @@ from colcon_robmosys.model.names import connection_name, node_name
 from colcon_robmosys.model.qos import qos_incompatibility
 from colcon_robmosys.model.schema import check_structure
 from colcon_robmosys.model.types import (
-    Component, Connection, InterfaceKind, InterfaceRef, Model, ModelFile,
-    Pattern, Port, PortRef, Role, ServiceDefinition, System, Workspace)
+    Component, Connection, Instance, InterfaceKind, InterfaceRef, Model,
+    ModelFile, Pattern, Port, PortRef, Role, ServiceDefinition, Structure,
+    System, Workspace)
 
 MODEL_FILE_NAME = 'robmosys.yaml'
 
@@ -81,7 +82,8 @@ def load_workspace(paths: Iterable[Path],
     Every file is loaded even when others are broken, so that one run
     reports every problem of the workspace.
     """
-    files, diagnostics = [], []
+    files: list[ModelFile] = []
+    diagnostics: list[Diagnostic] = []
     broken: dict[str, list[tuple[str, str]]] = {}
     for path in sorted(set(paths)):
         try:
@@ -390,7 +392,7 @@ class _WorkspaceChecker:
                            f"by '{server}' at line {where.line}: a "
                            f'{port.pattern.value} name has one server')
 
-    def _check_overrides(self, instance, component: Component) -> None:
+    def _check_overrides(self, instance: Instance, component: Component) -> None:
         parameters = {p.name: p for p in component.parameters}
         locations = instance.parameter_locations or \
             (instance.location,) * len(instance.parameters)
@@ -482,7 +484,7 @@ def model_dependencies(model: Model) -> list[str]:
     return list(dict.fromkeys(deps))
 
 
-def _structures(definition: ServiceDefinition):
+def _structures(definition: ServiceDefinition) -> Iterator[Structure]:
     for obj in definition.communication_objects:
         yield obj.structure
     for query in definition.queries:
@@ -496,7 +498,8 @@ def _structures(definition: ServiceDefinition):
 
 def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
     """Return one cycle per strongly connected part that loops."""
-    cycles, state = [], {}
+    cycles: list[list[str]] = []
+    state: dict[str, int] = {}
     for start in sorted(graph):
         if state.get(start):
             continue
