@@ -188,8 +188,8 @@ def test_diagram_shows_instances_ports_and_typed_connections(generated, package)
         for port in component.ports:
             assert f'<{port.name}> {port.name} ({port.role.value} {port.pattern.value})' in line
         assert ('style=dashed' in line) is (not instance.activate)
-    edges = re.findall(r'^  "(\w+)":(\w+) -> "(\w+)":(\w+) \[label="(\w+) ([\w/]+)\\n([\w/]+)"\];$',
-                       dot, re.MULTILINE)
+    edge = r'^  "(\w+)":(\w+) -> "(\w+)":(\w+) \[label="(\w+) ([\w/]+)\\n([\w/]+)"\];$'
+    edges = re.findall(edge, dot, re.MULTILINE)
     assert len(edges) == len(system.connections)
     remappings = expected_remappings(system)
     for connection in system.connections:
