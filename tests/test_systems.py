@@ -206,6 +206,23 @@ def test_diagram_shows_instances_ports_and_typed_connections(generated, package)
                 port.pattern.value, str(port.type), name) in edges
 
 
+def test_activate_file_names_what_a_failed_instance_holds_back(generated):
+    """A failed transition is reported with the instances that now wait in vain."""
+    source = (generated / 'dummy_robot_bringup' / 'launch' / 'activate.py').read_text()
+    tree = ast.parse(source)
+    # the table and the pure function only: launch itself is not installed here
+    keep = [n for n in tree.body if (isinstance(n, ast.Assign) and
+                                     ast.unparse(n.targets[0]) == 'ACTIVATE_AFTER') or
+            (isinstance(n, ast.FunctionDef) and n.name == '_waiting_for')]
+    namespace: dict = {}
+    exec(compile(ast.Module(body=keep, type_ignores=[]), 'activate.py', 'exec'), namespace)
+    waiting_for = namespace['_waiting_for']
+    assert waiting_for('map_server') == ['joints', 'laser_front', 'laser_rear', 'monitor',
+                                         'monitor_ops']
+    assert waiting_for('joints') == ['monitor']
+    assert waiting_for('monitor') == []
+
+
 # warnings -------------------------------------------------------------------
 
 @pytest.fixture
