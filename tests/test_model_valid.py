@@ -20,7 +20,7 @@ from colcon_robmosys.model.types import (
     Component, InterfaceKind, InterfaceRef, Language, Maintainer,
     ParameterRange, Pattern, Role, ServiceDefinition, Structure, System,
     Workspace)
-from harness.fake_ament import fake_ament_index
+from harness.fake_ament import EXAMPLE_EXTRA, fake_ament_index
 
 ROOT = Path(__file__).resolve().parent.parent
 VALID = sorted((ROOT / 'tests' / 'models' / 'valid').glob('*.yaml'))
@@ -376,13 +376,14 @@ def test_defaults_shared_by_the_models_of_a_file(workspace):
 # the example workspace ----------------------------------------------------
 
 def test_example_workspace(tmp_path):
-    result = load_workspace(EXAMPLES, fake_ament_index(tmp_path))
+    result = load_workspace(EXAMPLES, fake_ament_index(tmp_path, EXAMPLE_EXTRA))
     assert result.diagnostics == []
     workspace = result.workspace
-    assert {'publisher', 'pubsub_system', 'simple_msgs', 'subscriber', 'example_msgs',
-            'sender', 'receiver', 'add_server', 'add_client', 'fibonacci_server',
-            'fibonacci_client', 'level_sensor', 'level_watcher',
-            'examples_system'} <= {m.package for m in workspace.models}
+    assert sorted(m.package for m in workspace.models) == [
+        'add_client', 'add_server', 'dummy_joint_states', 'dummy_laser', 'dummy_map_server',
+        'dummy_robot_bringup', 'dummy_robot_monitor', 'example_msgs', 'examples_system',
+        'fibonacci_client', 'fibonacci_server', 'level_sensor', 'level_watcher', 'publisher',
+        'pubsub_system', 'receiver', 'sender', 'simple_msgs', 'subscriber']
 
     msgs = _model(workspace, 'simple_msgs', ServiceDefinition)
     ogm, map_ = msgs.communication_objects
