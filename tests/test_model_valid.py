@@ -378,7 +378,9 @@ def test_example_workspace(tmp_path):
     assert result.diagnostics == []
     workspace = result.workspace
     assert sorted(m.package for m in workspace.models) == [
-        'publisher', 'pubsub_system', 'simple_msgs', 'subscriber']
+        'cpp_client', 'cpp_publisher', 'cpp_receiver', 'cpp_sender', 'cpp_server',
+        'cpp_subscriber', 'mixed_system', 'publisher', 'pubsub_system', 'simple_msgs',
+        'subscriber']
 
     msgs = _model(workspace, 'simple_msgs', ServiceDefinition)
     ogm, map_ = msgs.communication_objects

@@ -64,10 +64,10 @@ _CPP_ESCAPES = {'\\': '\\\\', '"': '\\"', '\n': '\\n', '\t': '\\t',
 
 
 def cpp_str(text: Any) -> str:
-    """Write a C++ string literal, in plain ASCII.
+    r"""Write a C++ string literal, in plain ASCII.
 
     Other bytes of the UTF-8 text become three-digit octal escapes, which
-    (unlike ``\\x``) cannot swallow the character that follows; ``?`` is
+    (unlike ``\x``) cannot swallow the character that follows; ``?`` is
     escaped so that no trigraph forms.
     """
     out = []

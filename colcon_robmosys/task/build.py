@@ -4,6 +4,7 @@
 import os
 from pathlib import Path
 
+from colcon_core.environment import create_environment_scripts
 from colcon_core.event.output import StderrLine
 from colcon_core.logging import colcon_logger
 from colcon_core.plugin_system import satisfies_version
@@ -66,6 +67,9 @@ class RobmosysBuildTask(TaskExtensionPoint):
             logger.warning(message)
             self.context.put_event_into_queue(
                 StderrLine(message.encode() + b'\n'))
+            # an install entry without content: packages that only run it
+            # (systems) still build; one that find_package()s it fails there
+            create_environment_scripts(pkg, args, default_hooks=[])
             return 0
 
         # the generated tree is an ordinary ament_cmake package
@@ -75,7 +79,7 @@ class RobmosysBuildTask(TaskExtensionPoint):
         return await extension.build()
 
 
-def missing_prefix_packages(names, dependency_prefixes):
+def missing_prefix_packages(names, dependency_prefixes, environ=None):
     """Return the packages among names that no prefix provides.
 
     A package counts as provided if a prefix of AMENT_PREFIX_PATH,
@@ -83,10 +87,11 @@ def missing_prefix_packages(names, dependency_prefixes):
     its ament index entry or its CMake config file, which is what
     find_package() will look for.
     """
+    environ = os.environ if environ is None else environ
     prefixes = [Path(p) for p in dependency_prefixes]
     for variable in ('AMENT_PREFIX_PATH', 'CMAKE_PREFIX_PATH'):
         prefixes += [Path(p) for p in
-                     os.environ.get(variable, '').split(os.pathsep) if p]
+                     environ.get(variable, '').split(os.pathsep) if p]
     missing = []
     for name in names:
         share = Path('share')
