@@ -24,6 +24,7 @@ from colcon_robmosys.model import find_model_files, load_workspace
 from colcon_robmosys.model.index import InterfaceIndex
 from colcon_robmosys.model.types import Component, Language
 from colcon_robmosys.ros2 import plan_package
+from colcon_robmosys.ros2.cpp import string_lines
 from conftest import TEST_WORKSPACE
 
 GOLDEN = Path(__file__).resolve().parent / 'golden'
@@ -232,26 +233,39 @@ def test_port_the_generator_does_not_map_gives_a_clear_error(tmp_path):
 def test_cpp_string_literals_keep_text_as_data(text):
     literal = cpp_str(text)
     assert literal.isascii() and '\n' not in literal
-    # a C++ narrow string literal, read back: only these escapes are used
-    body, out, i = literal[1:-1], bytearray(), 0
-    while i < len(body):
-        if body[i] == '\\':
-            nxt = body[i + 1]
-            if nxt.isdigit():
-                out.append(int(body[i + 1:i + 4], 8))
-                i += 4
-                continue
-            out += {'n': b'\n', 't': b'\t', 'r': b'\r', '\\': b'\\', '"': b'"',
-                    '?': b'?'}[nxt]
-            i += 2
-            continue
-        assert body[i] not in '"\\'
-        out += body[i].encode()
-        i += 1
-    assert out.decode('utf-8') == text
+    assert _decode(literal) == text
     assert '??' not in literal
 
 
 def test_cpp_comments_cannot_swallow_code():
     assert cpp_comment('first\nsecond \\') == '// first\n// second \\.'
     assert cpp_comment('text', '///') == '/// text'
+
+
+def _decode(literal: str) -> str:
+    """Read back a literal cpp_str wrote (only its escapes occur)."""
+    body, out, i = literal[1:-1], bytearray(), 0
+    while i < len(body):
+        if body[i] == '\\':
+            if body[i + 1].isdigit():
+                out.append(int(body[i + 1:i + 4], 8))
+                i += 4
+                continue
+            out += {'n': b'\n', 't': b'\t', 'r': b'\r', '\\': b'\\', '"': b'"',
+                    '?': b'?'}[body[i + 1]]
+            i += 2
+            continue
+        out += body[i].encode()
+        i += 1
+    return out.decode('utf-8')
+
+
+def test_long_strings_are_split_into_lines_cpplint_accepts():
+    text = 'é "quoted" \\ ' * 40
+    lines = string_lines('descriptor.description', text)
+    assert lines[0] == 'descriptor.description ='
+    assert all(len('    ' + line) <= 100 for line in lines)
+    assert lines[-1].endswith(';')
+    literals = [line.strip().rstrip(';') for line in lines[1:]]
+    assert ''.join(_decode(literal) for literal in literals) == text
+    assert string_lines('x', 'short') == ['x = "short";']

@@ -117,10 +117,6 @@ def qos_statements(qos: QoS) -> list[str]:
 
 def _cpp_value(value: Any, type_: str) -> str:
     """Write a parameter value as a C++ expression of its type."""
-    if type_.endswith('[]'):
-        element = type_[:-2]
-        items = ', '.join(_cpp_value(v, element) for v in value)
-        return f'{_PARAMETER_TYPES[type_][0]}{{{items}}}'
     if type_ == 'bool':
         return 'true' if value else 'false'
     if type_ == 'int':
@@ -130,6 +126,37 @@ def _cpp_value(value: Any, type_: str) -> str:
     if type_ == 'double':
         return repr(float(value))
     return f'std::string({cpp_str(value)})'
+
+
+def string_lines(target: str, text: str, width: int = 72) -> list[str]:
+    """Assign a string literal to target, split into lines cpplint accepts.
+
+    Adjacent literals are joined by the compiler; the split falls between
+    characters, never inside an escape, and no literal is wider than width.
+    """
+    chunks = ['']
+    for char in text:
+        if len(cpp_str(chunks[-1] + char)) > width:
+            chunks.append('')
+        chunks[-1] += char
+    if len(chunks) == 1:
+        return [f'{target} = {cpp_str(text)};']
+    return [f'{target} ='] + [f'  {cpp_str(c)}' for c in chunks[:-1]] + \
+        [f'  {cpp_str(chunks[-1])};']
+
+
+def _default_lines(parameter: Parameter, ctype: str) -> list[str]:
+    """Return the statements that set ``default_value`` to the default."""
+    if parameter.type.endswith('[]'):
+        element = parameter.type[:-2]
+        return [f'{ctype} default_value;'] + [
+            f'default_value.push_back({_cpp_value(v, element)});'
+            for v in parameter.default]
+    if parameter.type == 'string':
+        return [f'{ctype} default_value;'] + string_lines('default_value',
+                                                          parameter.default)
+    return [f'const {ctype} default_value = '
+            f'{_cpp_value(parameter.default, parameter.type)};']
 
 
 def _parameter_context(parameter: Parameter) -> dict[str, Any]:
@@ -151,8 +178,9 @@ def _parameter_context(parameter: Parameter) -> dict[str, Any]:
         'name': parameter.name,
         'cpp_type': ctype,
         'accessor': accessor,
-        'default': _cpp_value(parameter.default, parameter.type),
-        'description': parameter.description,
+        'default_lines': _default_lines(parameter, ctype),
+        'description_lines': string_lines('descriptor.description',
+                                          parameter.description),
         'doc': parameter.description or f'The parameter {parameter.name}.',
         'read_only': 'true' if parameter.read_only else 'false',
         'range': range_,

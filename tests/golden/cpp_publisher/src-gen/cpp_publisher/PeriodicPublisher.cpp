@@ -58,13 +58,15 @@ PeriodicPublisher::PeriodicPublisher(
     rcl_interfaces::msg::ParameterDescriptor descriptor;
     descriptor.description = "Whether the robot is indoors.";
     descriptor.read_only = false;
-    declare_parameter<bool>("indoor", false, descriptor);
+    const bool default_value = false;
+    declare_parameter<bool>("indoor", default_value, descriptor);
   }
   {
     rcl_interfaces::msg::ParameterDescriptor descriptor;
     descriptor.description = "Number of scans merged into a map.";
     descriptor.read_only = false;
-    declare_parameter<int64_t>("noOfScans", INT64_C(0), descriptor);
+    const int64_t default_value = INT64_C(0);
+    declare_parameter<int64_t>("noOfScans", default_value, descriptor);
   }
   cbg_Activity1_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
 }

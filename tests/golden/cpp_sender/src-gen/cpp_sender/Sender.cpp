@@ -68,7 +68,8 @@ Sender::Sender(
     range.to_value = INT64_C(1024);
     range.step = INT64_C(0);
     descriptor.integer_range.push_back(range);
-    declare_parameter<int64_t>("width", INT64_C(8), descriptor);
+    const int64_t default_value = INT64_C(8);
+    declare_parameter<int64_t>("width", default_value, descriptor);
   }
   {
     rcl_interfaces::msg::ParameterDescriptor descriptor;
@@ -79,13 +80,16 @@ Sender::Sender(
     range.to_value = INT64_C(1024);
     range.step = INT64_C(0);
     descriptor.integer_range.push_back(range);
-    declare_parameter<int64_t>("height", INT64_C(4), descriptor);
+    const int64_t default_value = INT64_C(4);
+    declare_parameter<int64_t>("height", default_value, descriptor);
   }
   {
     rcl_interfaces::msg::ParameterDescriptor descriptor;
     descriptor.description = "Frame of the maps.";
     descriptor.read_only = true;
-    declare_parameter<std::string>("frame", std::string("map"), descriptor);
+    std::string default_value;
+    default_value = "map";
+    declare_parameter<std::string>("frame", default_value, descriptor);
   }
   cbg_Send_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
 }
