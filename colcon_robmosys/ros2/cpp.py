@@ -147,14 +147,14 @@ def string_lines(target: str, text: str, width: int = 72) -> list[str]:
 
 def _default_lines(parameter: Parameter, ctype: str) -> list[str]:
     """Return the statements that set ``default_value`` to the default."""
-    if parameter.type.endswith('[]'):
+    default = parameter.default
+    if isinstance(default, (tuple, list)):
         element = parameter.type[:-2]
         return [f'{ctype} default_value;'] + [
             f'default_value.push_back({_cpp_value(v, element)});'
-            for v in parameter.default]
-    if parameter.type == 'string':
-        return [f'{ctype} default_value;'] + string_lines('default_value',
-                                                          parameter.default)
+            for v in default]
+    if isinstance(default, str):
+        return [f'{ctype} default_value;'] + string_lines('default_value', default)
     return [f'const {ctype} default_value = '
             f'{_cpp_value(parameter.default, parameter.type)};']
 
