@@ -93,6 +93,32 @@ def read_launch_file(path: Path, share_dir: Path) -> list[NodeLaunch]:
     return nodes
 
 
+def read_activate_after(path: Path) -> dict[str, list[str]]:
+    """Return the ``ACTIVATE_AFTER`` table of a generated activate file.
+
+    Its keys are the instances the file manages (configures and activates),
+    each with the instances that must be active before it is activated.
+    """
+    tree = ast.parse(path.read_text(encoding='utf-8'), filename=str(path))
+    assignment = next(n for n in tree.body if isinstance(n, ast.Assign) and
+                      ast.unparse(n.targets[0]) == 'ACTIVATE_AFTER')
+    return ast.literal_eval(assignment.value)
+
+
+def activation_waves(activate_after: dict[str, list[str]]) -> list[list[str]]:
+    """Return the managed instances in waves: each once those it comes after are active."""
+    waves: list[list[str]] = []
+    done: set[str] = set()
+    while len(done) < len(activate_after):
+        wave = [n for n, after in activate_after.items()
+                if n not in done and all(a in done for a in after)]
+        if not wave:
+            raise ValueError(f'activation order cycle in {activate_after}')
+        waves.append(wave)
+        done.update(wave)
+    return waves
+
+
 def wait_until(condition: Callable[[], bool], timeout: float, period: float = 0.1) -> bool:
     """Poll ``condition`` until it holds or ``timeout`` seconds pass."""
     deadline = time.monotonic() + timeout
