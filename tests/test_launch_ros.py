@@ -3,7 +3,7 @@
 """The generated launch files, run for real by launch_ros where it is installed.
 
 launch and launch_ros are not on PyPI: on a machine without a ROS 2 install these
-tests skip, and tests/test_generated_code.py checks the launch files by reading them.
+tests skip, and tests/test_systems.py checks the launch files by reading them.
 """
 
 from __future__ import annotations
@@ -41,7 +41,7 @@ def launch_env(test_workspace_built, domain_id):
         [sys.executable, '-c', 'import launch_ros'], env=env, capture_output=True, timeout=60)
     if probe.returncode != 0:
         pytest.skip('launch_ros is not installed (it is not on PyPI): the launch files are '
-                    'checked by reading them in test_generated_code.py')
+                    'read and compared with the model in test_systems.py')
     return env
 
 
