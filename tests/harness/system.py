@@ -192,6 +192,24 @@ class LifecycleDriver:
             id=getattr(Transition, f'TRANSITION_{label.upper()}'))
         return self._call(ChangeState, f'{fqn}/change_state', request, timeout).success
 
+    def watch_transitions(self, fqns: list[str]) -> list[tuple[str, str]]:
+        """Return a list that collects, in order, every state the nodes reach from now on.
+
+        Each item is (fully qualified node name, state label), from the nodes'
+        ``transition_event`` topics; :meth:`spin` delivers them.
+        """
+        from lifecycle_msgs.msg import TransitionEvent
+        reached: list[tuple[str, str]] = []
+        for fqn in fqns:
+            self.node.create_subscription(
+                TransitionEvent, f'{fqn}/transition_event',
+                lambda msg, fqn=fqn: reached.append((fqn, msg.goal_state.label)), 100)
+        return reached
+
+    def spin(self, seconds: float = 0.1) -> None:
+        """Handle what arrived for the driver's node, waiting at most ``seconds``."""
+        self.executor.spin_once(timeout_sec=seconds)
+
     def parameters(self, fqn: str, names: list[str], timeout: float = 20.0) -> dict[str, Any]:
         """Return the current values of some parameters of a node."""
         from rcl_interfaces.srv import GetParameters
