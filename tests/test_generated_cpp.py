@@ -28,11 +28,13 @@ from colcon_robmosys.ros2.cpp import string_lines
 from conftest import TEST_WORKSPACE
 
 GOLDEN = Path(__file__).resolve().parent / 'golden'
+#: A component with every port and parameter kind, beside the examples.
+CPP_MODELS = Path(__file__).resolve().parent / 'models' / 'cpp'
 UPDATE = os.environ.get('ROBMOSYS_UPDATE_GOLDEN') == '1'
 
 
-def _load(src: Path):
-    result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
+def _load(*src: Path):
+    result = load_workspace(find_model_files(list(src)), InterfaceIndex([Path(sys.prefix)]))
     result.raise_errors()
     return result.workspace
 
@@ -42,18 +44,25 @@ def _cpp_packages(workspace) -> list[str]:
                   if isinstance(m, Component) and m.language is Language.CPP)
 
 
-CPP_PACKAGES = _cpp_packages(_load(TEST_WORKSPACE / 'src'))
+def _copy_models(src: Path) -> Path:
+    shutil.copytree(TEST_WORKSPACE / 'src', src, dirs_exist_ok=True)
+    shutil.copytree(CPP_MODELS, src / 'cpp_models')
+    return src
+
+
+CPP_PACKAGES = _cpp_packages(_load(TEST_WORKSPACE / 'src', CPP_MODELS))
 
 
 @pytest.fixture(scope='module')
 def generated_cpp(tmp_path_factory) -> Path:
-    """Generate the C++ packages of test_workspace (a copy) into a folder."""
-    src = tmp_path_factory.mktemp('src')
-    shutil.copytree(TEST_WORKSPACE / 'src', src, dirs_exist_ok=True)
-    workspace = _load(src)
+    """Generate the C++ packages of test_workspace and tests/models/cpp (copies)."""
+    workspace = _load(_copy_models(tmp_path_factory.mktemp('src')))
     out = tmp_path_factory.mktemp('generated_cpp')
     for package in _cpp_packages(workspace):
-        generate_package(plan_package(workspace, package), out / package)
+        plan = plan_package(workspace, package)
+        # all_ports comes without code of its own: the skeleton is its code
+        create_missing_user_files(plan)
+        generate_package(plan, out / package)
     return out
 
 
@@ -63,7 +72,7 @@ def _tree(root: Path) -> dict[str, bytes]:
 
 
 def test_examples_hold_every_cpp_pattern():
-    assert CPP_PACKAGES == ['cpp_client', 'cpp_publisher', 'cpp_receiver',
+    assert CPP_PACKAGES == ['all_ports', 'cpp_client', 'cpp_publisher', 'cpp_receiver',
                             'cpp_sender', 'cpp_server', 'cpp_subscriber']
 
 
@@ -131,7 +140,7 @@ def _linter(name: str) -> str:
 def test_ament_cpp_linters_pass(generated_cpp, linter):
     """Every generated C++ file, skeletons and the example's own files included."""
     files = _cpp_files(generated_cpp)
-    assert len(files) >= 6 * 5
+    assert len(files) >= 7 * 5
     result = subprocess.run([_linter(linter), *map(str, files)], capture_output=True,
                             text=True, timeout=300, env=_linter_env())
     assert result.returncode == 0, result.stdout + result.stderr

@@ -303,7 +303,7 @@ def _includes(component: Component, ports: list[dict[str, Any]]) -> dict[str, li
     if {'action_server', 'action_client'} & entities:
         ros.append('rclcpp_action/rclcpp_action.hpp')
     if 'action_server' in entities:
-        system += ['thread', 'utility', 'vector']
+        system += ['future', 'vector']
     if any(p.type.endswith('[]') for p in component.parameters):
         system.append('vector')
     ros += sorted({header_name(p.type) for p in component.ports})
