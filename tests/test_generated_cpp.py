@@ -278,3 +278,16 @@ def test_long_strings_are_split_into_lines_cpplint_accepts():
     literals = [line.strip().rstrip(';') for line in lines[1:]]
     assert ''.join(_decode(literal) for literal in literals) == text
     assert string_lines('x', 'short') == ['x = "short";']
+
+
+def test_package_xml_is_valid_and_complete(generated_cpp):
+    from catkin_pkg.package import parse_package
+    for package in CPP_PACKAGES:
+        parsed = parse_package(generated_cpp / package / 'package.xml')
+        parsed.validate()
+        depends = {d.name for d in parsed.build_depends} & {d.name for d in parsed.exec_depends}
+        assert {'rclcpp', 'rclcpp_lifecycle', 'rclcpp_components', 'rcl_interfaces',
+                'lifecycle_msgs'} <= depends, package
+    depends = {d.name for d in parse_package(
+        generated_cpp / 'all_ports' / 'package.xml').build_depends}
+    assert {'rclcpp_action', 'all_ports_msgs'} <= depends

@@ -5,8 +5,10 @@
 
 The layout is the reference's (Papyrus for Robotics): ``src-gen/<pkg>/`` holds
 the generated class and main, ``src-skel/<pkg>/`` the regenerated skeleton of
-the implementation, ``src/<pkg>/<Component>_impl.{h,cpp}`` (next to the
-model) the user's implementation, which derives from the generated class.
+the implementation, ``src/<pkg>/<Component>_impl.{hpp,cpp}`` (next to
+the model) the user's implementation, which derives from the generated class.
+Headers are ``.hpp`` where the reference has ``.h``: ament_uncrustify reads
+``.h`` files as C.
 
 The decisions live here; the templates under ``templates/component_cpp``
 only print what this module computes.
@@ -374,8 +376,10 @@ def plan_cpp_component(component: Component) -> PackagePlan:
     client_packages = list(CPP_CLIENT_PACKAGES)
     if uses_actions:
         client_packages.append('rclcpp_action')
-    build_depends = client_packages + ['rcl_interfaces'] + depends
-    exec_depends = build_depends + ['lifecycle_msgs']
+    # the parameter descriptors and the lifecycle states are used directly
+    interfaces = list(dict.fromkeys(['rcl_interfaces', 'lifecycle_msgs'] + depends))
+    build_depends = client_packages + interfaces
+    exec_depends = build_depends
     src = f'src-gen/{package}'
     files = [
         FileSpec(f'{src}/{cls}.hpp', 'component_cpp/node.hpp.jinja', context),
@@ -390,11 +394,11 @@ def plan_cpp_component(component: Component) -> PackagePlan:
         FileSpec('CMakeLists.txt', 'component_cpp/CMakeLists.txt.jinja', {
             'banner': banner, 'package': package, 'cls': cls,
             'node_cls': node_cls,
-            'find_packages': client_packages + depends,
+            'find_packages': build_depends,
             'link_targets': [f'{p}::{p}' for p in ('rclcpp', 'rclcpp_lifecycle')] +
             (['rclcpp_action::rclcpp_action'] if uses_actions else []) +
             ['rclcpp_components::component'],
-            'interface_packages': depends,
+            'interface_packages': interfaces,
             'sources': [f'{src}/{cls}.cpp'] +
             ([f'src/{package}/{cls}_impl.cpp'] if has_impl else []) +
             [f'{src}/{cls}_component.cpp'],
@@ -403,7 +407,7 @@ def plan_cpp_component(component: Component) -> PackagePlan:
             'banner': banner,
             **package_xml_context(
                 component.info, buildtool=['ament_cmake'],
-                depend=build_depends, exec_=['lifecycle_msgs'],
+                depend=build_depends,
                 test=['ament_cmake_cpplint', 'ament_cmake_uncrustify'])}),
     ]
     if uses_ports_header:
