@@ -291,3 +291,21 @@ def test_package_xml_is_valid_and_complete(generated_cpp):
     depends = {d.name for d in parse_package(
         generated_cpp / 'all_ports' / 'package.xml').build_depends}
     assert {'rclcpp_action', 'all_ports_msgs'} <= depends
+
+
+def test_rclcpp_is_looked_up_where_find_package_looks(tmp_path):
+    """The ament index of a prefix, or a CMake config file, counts as installed."""
+    from colcon_robmosys.task.build import missing_prefix_packages
+    ament, cmake, workspace = tmp_path / 'ament', tmp_path / 'cmake', tmp_path / 'ws'
+    (ament / 'share' / 'ament_index' / 'resource_index' / 'packages').mkdir(parents=True)
+    (ament / 'share' / 'ament_index' / 'resource_index' / 'packages' / 'rclcpp').touch()
+    (cmake / 'share' / 'rclcpp_lifecycle' / 'cmake').mkdir(parents=True)
+    (cmake / 'share' / 'rclcpp_lifecycle' / 'cmake' / 'rclcpp_lifecycleConfig.cmake').touch()
+    (workspace / 'share' / 'rclcpp_components' / 'cmake').mkdir(parents=True)
+    (workspace / 'share' / 'rclcpp_components' / 'cmake' /
+     'rclcpp_components-config.cmake').touch()
+    names = ['rclcpp', 'rclcpp_lifecycle', 'rclcpp_components']
+    environ = {'AMENT_PREFIX_PATH': str(ament), 'CMAKE_PREFIX_PATH': str(cmake)}
+    assert missing_prefix_packages(names, [], environ=environ) == ['rclcpp_components']
+    assert missing_prefix_packages(names, [str(workspace)], environ=environ) == []
+    assert missing_prefix_packages(names, [], environ={}) == names
