@@ -173,3 +173,31 @@ class LifecycleDriver:
         request = GetParameters.Request(names=names)
         answer = self._call(GetParameters, f'{fqn}/get_parameters', request, timeout)
         return {n: parameter_value_to_python(v) for n, v in zip(names, answer.values)}
+
+    def set_parameters(self, fqn: str, values: dict[str, Any],
+                       timeout: float = 20.0) -> dict[str, tuple[bool, str]]:
+        """Set parameters one by one; return (successful, reason) per name."""
+        from rcl_interfaces.srv import SetParameters
+        from rclpy.parameter import Parameter
+        request = SetParameters.Request(parameters=[
+            Parameter(name, value=value).to_parameter_msg() for name, value in values.items()])
+        answer = self._call(SetParameters, f'{fqn}/set_parameters', request, timeout)
+        return {name: (result.successful, result.reason)
+                for name, result in zip(values, answer.results)}
+
+    def endpoints(self, fqn: str) -> dict[str, set[str]]:
+        """Return the topics and services a node has, as the ROS graph sees them now."""
+        namespace, _, name = fqn.rpartition('/')
+        namespace = namespace or '/'
+        graph = self.node
+        found = {'publishers': graph.get_publisher_names_and_types_by_node,
+                 'subscriptions': graph.get_subscriber_names_and_types_by_node,
+                 'services': graph.get_service_names_and_types_by_node,
+                 'clients': graph.get_client_names_and_types_by_node}
+        result = {}
+        for kind, query in found.items():
+            try:
+                result[kind] = {topic for topic, _ in query(name, namespace)}
+            except Exception:  # noqa: B902 - rclpy raises NodeNameNonExistentError
+                result[kind] = set()
+        return result
