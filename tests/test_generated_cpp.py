@@ -72,8 +72,9 @@ def _tree(root: Path) -> dict[str, bytes]:
 
 
 def test_examples_hold_every_cpp_pattern():
-    assert CPP_PACKAGES == ['all_ports', 'cpp_client', 'cpp_publisher', 'cpp_receiver',
-                            'cpp_sender', 'cpp_server', 'cpp_subscriber']
+    assert CPP_PACKAGES == ['all_ports', 'cpp_client', 'cpp_level_sensor', 'cpp_level_watcher',
+                            'cpp_publisher', 'cpp_receiver', 'cpp_sender', 'cpp_server',
+                            'cpp_subscriber']
 
 
 @pytest.mark.parametrize('package', CPP_PACKAGES)
@@ -140,7 +141,7 @@ def _linter(name: str) -> str:
 def test_ament_cpp_linters_pass(generated_cpp, linter):
     """Every generated C++ file, skeletons and the example's own files included."""
     files = _cpp_files(generated_cpp)
-    assert len(files) >= 7 * 5
+    assert len(files) >= 9 * 5
     result = subprocess.run([_linter(linter), *map(str, files)], capture_output=True,
                             text=True, timeout=300, env=_linter_env())
     assert result.returncode == 0, result.stdout + result.stderr
@@ -221,19 +222,6 @@ def test_function_named_only_in_a_comment_does_not_count(tmp_path):
     header.write_text(text.replace('  void fReceiving(', '  // void fReceiving(\n  void other('))
     with pytest.raises(RobmosysError, match="lacks the function 'fReceiving'"):
         generate_package(plan_package(_load(src), 'cpp_receiver'), tmp_path / 'out')
-
-
-def test_port_the_generator_does_not_map_gives_a_clear_error(tmp_path):
-    src = _component_src(tmp_path)
-    model = src / 'cpp_receiver' / 'robmosys.yaml'
-    model.write_text(model.read_text().replace(
-        '    activities:\n',
-        '      eAlarm: {pattern: event, role: required, type: example_msgs/LevelAbove}\n'
-        '    activities:\n'))
-    with pytest.raises(RobmosysError) as error:
-        plan_package(_load(src), 'cpp_receiver')
-    assert str(error.value).endswith(
-        "error: port 'eAlarm': the C++ generator does not map required event ports yet")
 
 
 @pytest.mark.parametrize('text', [

@@ -55,6 +55,50 @@ rclcpp::QoS qos_rQuiet()
   return qos;
 }
 
+/// The QoS of the port eLevel, every policy explicit.
+rclcpp::QoS qos_eLevel()
+{
+  rclcpp::QoS qos(rclcpp::KeepLast(1));
+  qos.keep_last(5);
+  qos.reliable();
+  qos.durability_volatile();
+  qos.liveliness(RMW_QOS_POLICY_LIVELINESS_AUTOMATIC);
+  return qos;
+}
+
+/// The QoS of the port eAll, every policy explicit.
+rclcpp::QoS qos_eAll()
+{
+  rclcpp::QoS qos(rclcpp::KeepLast(1));
+  qos.keep_last(10);
+  qos.reliable();
+  qos.durability_volatile();
+  qos.liveliness(RMW_QOS_POLICY_LIVELINESS_AUTOMATIC);
+  return qos;
+}
+
+/// The QoS of the port eWatch, every policy explicit.
+rclcpp::QoS qos_eWatch()
+{
+  rclcpp::QoS qos(rclcpp::KeepLast(1));
+  qos.keep_last(5);
+  qos.best_effort();
+  qos.durability_volatile();
+  qos.liveliness(RMW_QOS_POLICY_LIVELINESS_AUTOMATIC);
+  return qos;
+}
+
+/// The QoS of the port eQuiet, every policy explicit.
+rclcpp::QoS qos_eQuiet()
+{
+  rclcpp::QoS qos(rclcpp::KeepLast(1));
+  qos.keep_last(10);
+  qos.reliable();
+  qos.durability_volatile();
+  qos.liveliness(RMW_QOS_POLICY_LIVELINESS_AUTOMATIC);
+  return qos;
+}
+
 }  // namespace
 
 Everything::Parameters::Parameters(rclcpp_lifecycle::LifecycleNode & node)
@@ -219,10 +263,14 @@ Everything::Everything(
   cbg_Answer_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
   cbg_Exec_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
   cbg_Result_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  cbg_Condition_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  cbg_OnLevel_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
   cbg_qAsk_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
   cbg_qPlain_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
   cbg_aUse_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
   cbg_aPlain_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  cbg_eWatch_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  cbg_eQuiet_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
 }
 
 Everything::~Everything()
@@ -337,6 +385,33 @@ Everything::CallbackReturn Everything::on_configure(
       [](const all_ports_msgs::action::Count::Result & commobj) {
         static_cast<void>(commobj);
       });
+    eLevel = std::make_shared<ports::EventServer<all_ports_msgs::action::Level>>(
+      this, "eLevel", qos_eLevel(), [this]() {return active_.load();},
+      [this](
+        const all_ports_msgs::action::Level::Goal & activation,
+        const all_ports_msgs::action::Level::Feedback & event) {
+        return fAbove(activation, event);
+      }, cbg_Condition_);
+    eAll = std::make_shared<ports::EventServer<all_ports_msgs::action::Level>>(
+      this, "eAll", qos_eAll(), [this]() {return active_.load();},
+      nullptr, nullptr);
+    eWatch = std::make_shared<ports::EventClient<all_ports_msgs::action::Level>>(
+      this, "eWatch", qos_eWatch(),
+      [this](const all_ports_msgs::action::Level::Feedback & commobj) {
+        if (!active_.load()) {
+          return;
+        }
+        try {
+          fOnLevel(commobj);
+        } catch (const std::exception & error) {
+          RCLCPP_ERROR(get_logger(), "activity OnLevel failed: %s", error.what());
+        }
+      }, cbg_eWatch_);
+    eQuiet = std::make_shared<ports::EventClient<all_ports_msgs::action::Level>>(
+      this, "eQuiet", qos_eQuiet(),
+      [](const all_ports_msgs::action::Level::Feedback & commobj) {
+        static_cast<void>(commobj);
+      }, cbg_eQuiet_);
     // created cancelled: the activity starts on activate
     timer_Periodic_ = create_wall_timer(
       std::chrono::nanoseconds(250000000), [this]() {run_Periodic_();},
@@ -466,6 +541,10 @@ void Everything::release_()
   aCount.reset();
   aUse.reset();
   aPlain.reset();
+  eLevel.reset();
+  eAll.reset();
+  eWatch.reset();
+  eQuiet.reset();
 }
 
 void Everything::run_Periodic_()
@@ -529,6 +608,15 @@ void Everything::fUse()
   auto answer = qPlain->call(request, std::chrono::milliseconds(100));
   auto wrapped = aPlain->send_goal(goal, std::chrono::seconds(1));
   RCLCPP_INFO(get_logger(), "%ld %d", answer->y, wrapped.result->reached);
+  all_ports_msgs::action::Level::Goal activation;
+  activation.threshold = 3;
+  auto once = eWatch->activate(activation, true);
+  auto always = eWatch->activate(activation);
+  eWatch->deactivate(always);
+  all_ports_msgs::action::Level::Feedback event;
+  event.level = 4;
+  const size_t notified = eLevel->fire(event) + eAll->fire(event);
+  RCLCPP_INFO(get_logger(), "%zu notified, %zu events", notified, once->events.load());
 }
 
 void Everything::fTwice(
@@ -536,6 +624,13 @@ void Everything::fTwice(
   all_ports_msgs::srv::Twice::Response & response)
 {
   response.y = 2 * request.x;
+}
+
+bool Everything::fAbove(
+  const all_ports_msgs::action::Level::Goal & activation,
+  const all_ports_msgs::action::Level::Feedback & event)
+{
+  return event.level >= activation.threshold;
 }
 
 }  // namespace all_ports

@@ -18,6 +18,7 @@
 #include "rclcpp_lifecycle/lifecycle_publisher.hpp"
 #include "rclcpp_action/rclcpp_action.hpp"
 #include "all_ports_msgs/action/count.hpp"
+#include "all_ports_msgs/action/level.hpp"
 #include "all_ports_msgs/msg/tick.hpp"
 #include "all_ports_msgs/srv/twice.hpp"
 
@@ -124,6 +125,14 @@ protected:
   /// The function fResult of the model.
   virtual void fResult(const all_ports_msgs::action::Count::Result & commobj) = 0;
 
+  /// The function fAbove of the model.
+  virtual bool fAbove(
+    const all_ports_msgs::action::Level::Goal & activation,
+    const all_ports_msgs::action::Level::Feedback & event);
+
+  /// The function fOnLevel of the model.
+  virtual void fOnLevel(const all_ports_msgs::action::Level::Feedback & commobj) = 0;
+
   /// The function fSetUp of the model.
   virtual void fSetUp() = 0;
 
@@ -157,6 +166,18 @@ protected:
   /// Required action port (all_ports_msgs/action/Count).
   std::shared_ptr<ports::ActionClient<all_ports_msgs::action::Count>> aPlain;
 
+  /// Provided event port (all_ports_msgs/action/Level).
+  std::shared_ptr<ports::EventServer<all_ports_msgs::action::Level>> eLevel;
+
+  /// Provided event port (all_ports_msgs/action/Level).
+  std::shared_ptr<ports::EventServer<all_ports_msgs::action::Level>> eAll;
+
+  /// Required event port (all_ports_msgs/action/Level).
+  std::shared_ptr<ports::EventClient<all_ports_msgs::action::Level>> eWatch;
+
+  /// Required event port (all_ports_msgs/action/Level).
+  std::shared_ptr<ports::EventClient<all_ports_msgs::action::Level>> eQuiet;
+
 private:
   /// Destroy the ports and timers created on configure.
   void release_();
@@ -175,10 +196,14 @@ private:
   rclcpp::CallbackGroup::SharedPtr cbg_Answer_;
   rclcpp::CallbackGroup::SharedPtr cbg_Exec_;
   rclcpp::CallbackGroup::SharedPtr cbg_Result_;
+  rclcpp::CallbackGroup::SharedPtr cbg_Condition_;
+  rclcpp::CallbackGroup::SharedPtr cbg_OnLevel_;
   rclcpp::CallbackGroup::SharedPtr cbg_qAsk_;
   rclcpp::CallbackGroup::SharedPtr cbg_qPlain_;
   rclcpp::CallbackGroup::SharedPtr cbg_aUse_;
   rclcpp::CallbackGroup::SharedPtr cbg_aPlain_;
+  rclcpp::CallbackGroup::SharedPtr cbg_eWatch_;
+  rclcpp::CallbackGroup::SharedPtr cbg_eQuiet_;
   rclcpp::TimerBase::SharedPtr timer_Periodic_;
   /// Serialises the goals of each action server port, as its activity's group would.
   std::mutex execute_aCount_mutex_;

@@ -36,7 +36,7 @@ int main(int argc, char * argv[])
     // one thread per callback group and one more, so that a blocking call
     // in one activity never starves the thread that delivers its answer
     const size_t threads =
-      std::max<size_t>(std::thread::hardware_concurrency(), 11);
+      std::max<size_t>(std::thread::hardware_concurrency(), 15);
     rclcpp::executors::MultiThreadedExecutor executor(rclcpp::ExecutorOptions(), threads);
     executor.add_node(node->get_node_base_interface());
     executor.spin();

@@ -5,16 +5,25 @@
 
 #pragma once
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <functional>
 #include <future>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <utility>
+#include <vector>
 
 #include "rclcpp/rclcpp.hpp"
 #include "rclcpp_action/rclcpp_action.hpp"
+#include "rclcpp/serialization.hpp"
+#include "rclcpp/serialized_message.hpp"
+#include "rclcpp_lifecycle/lifecycle_node.hpp"
 
 namespace all_ports
 {
@@ -185,6 +194,327 @@ private:
   typename rclcpp_action::Client<ActionT>::SharedPtr client_;
   std::string name_;
   ResultCallback on_result_;
+};
+
+/// Copy a message into another type of the same fields, through their CDR form.
+/**
+ * The result and the feedback of an event's action both hold the event's fields.
+ */
+template<typename FromT, typename ToT>
+ToT convert(const FromT & from)
+{
+  rclcpp::SerializedMessage serialized;
+  rclcpp::Serialization<FromT>().serialize_message(&from, &serialized);
+  ToT to;
+  rclcpp::Serialization<ToT>().deserialize_message(&serialized, &to);
+  return to;
+}
+
+/// A provided event port: an action server whose goals are activations.
+/**
+ * Each accepted goal is kept, without a thread, until its client cancels it
+ * or, for a single activation, until its first event. fire() publishes an
+ * event as feedback of each activation whose condition holds.
+ */
+template<typename ActionT>
+class EventServer
+{
+public:
+  using Goal = typename ActionT::Goal;
+  using Event = typename ActionT::Feedback;
+  using GoalHandle = rclcpp_action::ServerGoalHandle<ActionT>;
+  using Condition = std::function<bool (const Goal &, const Event &)>;
+
+  EventServer(
+    rclcpp_lifecycle::LifecycleNode * node, const std::string & name, const rclcpp::QoS & qos,
+    std::function<bool()> is_active, Condition condition,
+    rclcpp::CallbackGroup::SharedPtr group)
+  : state_(std::make_shared<State>())
+  {
+    state_->logger = node->get_logger().get_child(name);
+    state_->condition = std::move(condition);
+    rcl_action_server_options_t options = rcl_action_server_get_default_options();
+    options.feedback_topic_qos = qos.get_rmw_qos_profile();
+    auto state = state_;
+    server_ = rclcpp_action::create_server<ActionT>(
+      node, name,
+      [state, is_active](const rclcpp_action::GoalUUID &, std::shared_ptr<const Goal>) {
+        if (!is_active()) {
+          RCLCPP_WARN(state->logger, "an activation was refused: the node is inactive");
+          return rclcpp_action::GoalResponse::REJECT;
+        }
+        return rclcpp_action::GoalResponse::ACCEPT_AND_EXECUTE;
+      },
+      [state](const std::shared_ptr<GoalHandle> goal_handle) {
+        std::lock_guard<std::mutex> lock(state->mutex);
+        auto kept = state->activations.find(goal_handle->get_goal_id());
+        if (kept == state->activations.end()) {
+          return rclcpp_action::CancelResponse::REJECT;
+        }
+        state->activations.erase(kept);
+        state->cancels.erase(
+          std::remove_if(
+            state->cancels.begin(), state->cancels.end(), [](const std::future<void> & done) {
+              return done.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+            }), state->cancels.end());
+        // the server marks the goal canceling once this callback returned
+        state->cancels.push_back(
+          std::async(
+            std::launch::async, [goal_handle]() {
+              const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+              while (!goal_handle->is_canceling() && std::chrono::steady_clock::now() < deadline) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(1));
+              }
+              if (goal_handle->is_canceling()) {
+                goal_handle->canceled(std::make_shared<typename ActionT::Result>());
+              }
+            }));
+        return rclcpp_action::CancelResponse::ACCEPT;
+      },
+      [state](const std::shared_ptr<GoalHandle> goal_handle) {
+        std::lock_guard<std::mutex> lock(state->mutex);
+        state->activations.emplace(goal_handle->get_goal_id(), goal_handle);
+      }, options, group);
+  }
+
+  /// Abort the activations still kept.
+  ~EventServer()
+  {
+    std::map<rclcpp_action::GoalUUID, std::shared_ptr<GoalHandle>> activations;
+    std::vector<std::future<void>> cancels;
+    {
+      std::lock_guard<std::mutex> lock(state_->mutex);
+      activations.swap(state_->activations);
+      cancels.swap(state_->cancels);
+    }
+    for (auto & activation : activations) {
+      if (activation.second->is_active()) {
+        activation.second->abort(std::make_shared<typename ActionT::Result>());
+      }
+    }
+  }
+
+  /// Notify an event to each activation whose condition holds; return how many.
+  size_t fire(const Event & event)
+  {
+    size_t notified = 0;
+    std::lock_guard<std::mutex> lock(state_->mutex);
+    for (auto kept = state_->activations.begin(); kept != state_->activations.end(); ) {
+      const std::shared_ptr<GoalHandle> goal_handle = kept->second;
+      bool holds = true;
+      if (state_->condition) {
+        try {
+          holds = state_->condition(*goal_handle->get_goal(), event);
+        } catch (const std::exception & error) {
+          RCLCPP_ERROR(state_->logger, "the condition failed: %s", error.what());
+          holds = false;
+        }
+      }
+      if (!holds) {
+        ++kept;
+        continue;
+      }
+      goal_handle->publish_feedback(std::make_shared<Event>(event));
+      ++notified;
+      if (goal_handle->get_goal()->single) {
+        kept = state_->activations.erase(kept);
+        goal_handle->succeed(
+          std::make_shared<typename ActionT::Result>(
+            convert<Event, typename ActionT::Result>(event)));
+      } else {
+        ++kept;
+      }
+    }
+    return notified;
+  }
+
+  /// Return the rclcpp_action server, for what this class does not offer.
+  typename rclcpp_action::Server<ActionT>::SharedPtr server() const
+  {
+    return server_;
+  }
+
+private:
+  /// What the server's callbacks share with this port, which may go first.
+  struct State
+  {
+    std::mutex mutex;
+    rclcpp::Logger logger = rclcpp::get_logger("event");
+    Condition condition;
+    std::map<rclcpp_action::GoalUUID, std::shared_ptr<GoalHandle>> activations;
+    std::vector<std::future<void>> cancels;
+  };
+
+  std::shared_ptr<State> state_;
+  typename rclcpp_action::Server<ActionT>::SharedPtr server_;
+};
+
+/// An activation of an event by a required event port.
+template<typename ActionT>
+struct EventActivation
+{
+  explicit EventActivation(bool single_activation)
+  : single(single_activation)
+  {
+  }
+
+  /// The first event ends the activation.
+  const bool single;
+  /// How many events of this activation ran the activity.
+  std::atomic<size_t> events{0};
+  /// Deactivated, ended by its single event, refused or aborted.
+  std::atomic<bool> ended{false};
+  /// The goal, once the server accepted the activation.
+  typename rclcpp_action::ClientGoalHandle<ActionT>::SharedPtr goal_handle;
+};
+
+/// A required event port: an action client whose goals are activations.
+/**
+ * Each event of an activation runs the activity the port triggers; deactivating
+ * cancels the goal.
+ */
+template<typename ActionT>
+class EventClient
+{
+public:
+  using Goal = typename ActionT::Goal;
+  using Event = typename ActionT::Feedback;
+  using Activation = EventActivation<ActionT>;
+  using GoalHandle = rclcpp_action::ClientGoalHandle<ActionT>;
+  using EventCallback = std::function<void (const Event &)>;
+
+  EventClient(
+    rclcpp_lifecycle::LifecycleNode * node, const std::string & name, const rclcpp::QoS & qos,
+    EventCallback on_event, rclcpp::CallbackGroup::SharedPtr group)
+  : state_(std::make_shared<State>())
+  {
+    state_->logger = node->get_logger().get_child(name);
+    state_->on_event = std::move(on_event);
+    rcl_action_client_options_t options = rcl_action_client_get_default_options();
+    options.feedback_topic_qos = qos.get_rmw_qos_profile();
+    state_->client = rclcpp_action::create_client<ActionT>(node, name, group, options);
+  }
+
+  /// Deactivate every activation.
+  ~EventClient()
+  {
+    std::vector<std::shared_ptr<Activation>> activations;
+    {
+      std::lock_guard<std::mutex> lock(state_->mutex);
+      activations = state_->activations;
+    }
+    for (const auto & activation : activations) {
+      deactivate(activation);
+    }
+  }
+
+  /// Wait until the event server is there, at most timeout; return whether it is.
+  bool wait_for_server(std::chrono::nanoseconds timeout)
+  {
+    return state_->client->wait_for_action_server(timeout);
+  }
+
+  /// Activate the event; with single, its first event ends the activation.
+  std::shared_ptr<Activation> activate(Goal activation, bool single = false)
+  {
+    activation.single = single;
+    auto handle = std::make_shared<Activation>(single);
+    auto state = state_;
+    {
+      std::lock_guard<std::mutex> lock(state->mutex);
+      state->activations.push_back(handle);
+    }
+    typename rclcpp_action::Client<ActionT>::SendGoalOptions options;
+    options.goal_response_callback = [state, handle](typename GoalHandle::SharedPtr goal) {
+        accepted(state, handle, goal);
+      };
+    options.feedback_callback = [state, handle](
+      typename GoalHandle::SharedPtr, const std::shared_ptr<const Event> event) {
+        notify(state, handle, *event, false);
+      };
+    options.result_callback = [state, handle](const typename GoalHandle::WrappedResult & result) {
+        if (handle->single && result.code == rclcpp_action::ResultCode::SUCCEEDED &&
+          result.result)
+        {
+          // the event that ended a single activation is its result too, if its feedback was lost
+          notify(state, handle, convert<typename ActionT::Result, Event>(*result.result), true);
+        }
+        handle->ended = true;
+      };
+    state->client->async_send_goal(activation, options);
+    return handle;
+  }
+
+  /// End an activation: none of its events runs the activity any more.
+  void deactivate(const std::shared_ptr<Activation> & handle)
+  {
+    typename GoalHandle::SharedPtr goal;
+    {
+      std::lock_guard<std::mutex> lock(state_->mutex);
+      if (!handle->ended.exchange(true)) {
+        goal = handle->goal_handle;
+      }
+    }
+    if (goal) {
+      state_->client->async_cancel_goal(goal);
+    }
+  }
+
+  /// Return the rclcpp_action client, for what this class does not offer.
+  typename rclcpp_action::Client<ActionT>::SharedPtr client() const
+  {
+    return state_->client;
+  }
+
+private:
+  /// What the client's callbacks share with this port, which may go first.
+  struct State
+  {
+    std::mutex mutex;
+    rclcpp::Logger logger = rclcpp::get_logger("event");
+    EventCallback on_event;
+    typename rclcpp_action::Client<ActionT>::SharedPtr client;
+    std::vector<std::shared_ptr<Activation>> activations;
+  };
+
+  static void accepted(
+    const std::shared_ptr<State> & state, const std::shared_ptr<Activation> & handle,
+    typename GoalHandle::SharedPtr goal)
+  {
+    if (!goal) {
+      RCLCPP_WARN(state->logger, "an activation was refused");
+      handle->ended = true;
+      return;
+    }
+    bool ended;
+    {
+      std::lock_guard<std::mutex> lock(state->mutex);
+      handle->goal_handle = goal;
+      ended = handle->ended;
+    }
+    if (ended) {
+      state->client->async_cancel_goal(goal);
+    }
+  }
+
+  static void notify(
+    const std::shared_ptr<State> & state, const std::shared_ptr<Activation> & handle,
+    const Event & event, bool from_result)
+  {
+    {
+      std::lock_guard<std::mutex> lock(state->mutex);
+      if (handle->ended) {
+        return;
+      }
+      ++handle->events;
+      handle->ended = handle->single || from_result;
+    }
+    if (state->on_event) {
+      state->on_event(event);
+    }
+  }
+
+  std::shared_ptr<State> state_;
 };
 
 }  // namespace ports

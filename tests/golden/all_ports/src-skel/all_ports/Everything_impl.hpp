@@ -26,6 +26,7 @@ protected:
   all_ports_msgs::action::Count::Result fCount(
     const std::shared_ptr<GoalHandle_aCount> goal_handle) override;
   void fResult(const all_ports_msgs::action::Count::Result & commobj) override;
+  void fOnLevel(const all_ports_msgs::action::Level::Feedback & commobj) override;
   void fSetUp() override;
   void fTearDown() override;
 };

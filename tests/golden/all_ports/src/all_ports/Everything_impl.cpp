@@ -41,6 +41,13 @@ void Everything_impl::fResult(const all_ports_msgs::action::Count::Result & comm
   RCLCPP_WARN(get_logger(), "fResult is not implemented yet");
 }
 
+// The function fOnLevel of the model.
+void Everything_impl::fOnLevel(const all_ports_msgs::action::Level::Feedback & commobj)
+{
+  static_cast<void>(commobj);
+  RCLCPP_WARN(get_logger(), "fOnLevel is not implemented yet");
+}
+
 // The function fSetUp of the model.
 void Everything_impl::fSetUp()
 {
