@@ -98,9 +98,10 @@ def _node_imports(names: dict[InterfaceRef, str], component: Component,
     modules: dict[str, set[str]] = {
         'rclpy.lifecycle': {'LifecycleNode', 'LifecycleState',
                             'TransitionCallbackReturn'},
-        'threading': set(),
-        'traceback': set(),
     }
+    if component.ports or component.activities or component.lifecycle:
+        # every piece of user code runs in a try that logs the traceback
+        modules['traceback'] = set()
     for ref, local in names.items():
         alias = '' if local == ref.name else f' as {local}'
         modules.setdefault(f'{ref.package}.{ref.kind.value}', set()).add(
@@ -114,7 +115,9 @@ def _node_imports(names: dict[InterfaceRef, str], component: Component,
                     'IntegerRange' if parameter.type == 'int'
                     else 'FloatingPointRange')
     if component.activities or entities & set(HELPERS):
+        # a callback group and a lock per activity, and in the port helpers
         modules['rclpy.callback_groups'] = {'MutuallyExclusiveCallbackGroup'}
+        modules['threading'] = set()
     if entities & {'publisher', 'subscription', 'event_server',
                    'event_client'}:
         modules['rclpy.qos'] = {'DurabilityPolicy', 'HistoryPolicy',
@@ -230,7 +233,7 @@ def _parameter_context(parameter: Parameter) -> dict[str, Any]:
         'name': parameter.name,
         'py_type': py_type,
         'ros_type': ros_type,
-        'default': repr(default),
+        'default': default,
         'description': parameter.description,
         # pep257 wants an imperative summary; the model's text follows it
         'doc': _doc(f'Return the parameter {parameter.name}.',
@@ -242,6 +245,20 @@ def _parameter_context(parameter: Parameter) -> dict[str, Any]:
 
 def _doc(summary: str, text: str) -> str:
     return f'{summary}\n\n{text}' if text.strip() else summary
+
+
+def _class_doc(cls: str, description: str) -> str:
+    """Return the docstring of the node class.
+
+    The first line of the model's description is its summary when it fits
+    on the line of the class docstring; pep257 wants a one-line summary and
+    ament_flake8 lines of at most 99 characters.
+    """
+    lines = description.strip().splitlines()
+    # 4 spaces, two triple quotes and the period pep257 may add
+    if lines and len(lines[0].replace('\\', '\\\\')) + 11 <= 99:
+        return description
+    return _doc(f'The lifecycle node of the component {cls}.', description)
 
 
 def _function_context(component: Component, name: str, args: list[str],
@@ -288,7 +305,7 @@ def plan_python_component(component: Component) -> PackagePlan:
     has_impl = bool(user_functions)
     module_context = {
         'banner': banner, 'package': package, 'cls': cls,
-        'description': component.info.description,
+        'description': _class_doc(cls, component.info.description),
         'imports': _node_imports(type_names, component, entities,
                                  uses_duration),
         'ports': ports, 'activities': activities,
