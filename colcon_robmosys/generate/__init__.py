@@ -8,6 +8,7 @@ from __future__ import annotations
 import ast
 from dataclasses import dataclass, field
 from pathlib import Path
+import re
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
 from colcon_robmosys.generate.render import render
@@ -36,6 +37,8 @@ def user_file_problems(user_file: UserFile, path: Path) -> list[Diagnostic]:
     except (OSError, UnicodeDecodeError) as exc:
         return [Diagnostic(Location(str(path)),
                            f'cannot read the implementation file: {exc}')]
+    if path.suffix in ('.hpp', '.h'):
+        return _cpp_header_problems(user_file, path, text)
     if not path.suffix == '.py':
         return []
     try:
@@ -59,6 +62,52 @@ def user_file_problems(user_file: UserFile, path: Path) -> list[Diagnostic]:
                        f"class '{cls.name}' lacks the function '{name}' of "
                        f'the model; {skeleton}')
             for name in user_file.required_functions if name not in defined]
+
+
+def _with_skeleton_path(diagnostic: Diagnostic, plan: PackagePlan,
+                        out_dir: Path) -> Diagnostic:
+    """Add where the skeleton a message names was written."""
+    for user_file in plan.user_files:
+        if user_file.skeleton_path and \
+                f'skeleton {user_file.skeleton_path} ' in diagnostic.message:
+            return Diagnostic(
+                diagnostic.location, f'{diagnostic.message}: '
+                f'{out_dir / user_file.skeleton_path}', diagnostic.severity)
+    return diagnostic
+
+
+def _cpp_header_problems(user_file: UserFile, path: Path,
+                         text: str) -> list[Diagnostic]:
+    """Check that a C++ header declares the class and functions of the model.
+
+    A compiler would say so too, but only in the middle of the build and in
+    terms of pure virtual functions; this names the function of the model.
+    Comments, strings and preprocessor lines are blanked out (keeping line
+    and column) so that only declarations count.
+    """
+    code = _CPP_NOISE.sub(lambda m: re.sub(r'[^\n]', ' ', m.group(0)), text)
+    skeleton = f'the skeleton {user_file.skeleton_path} of the package shows ' \
+        'what the model asks for'
+    cls = re.search(rf'\b(?:class|struct)\s+{re.escape(user_file.required_class)}\b'
+                    r'[^;{]*\{', code)
+    if cls is None:
+        return [Diagnostic(Location(str(path), 1, 1),
+                           f"no class '{user_file.required_class}' in the "
+                           f'implementation file; {skeleton}')]
+    line = code.count('\n', 0, cls.start()) + 1
+    column = cls.start() - code.rfind('\n', 0, cls.start())
+    body = code[cls.end():]
+    return [Diagnostic(Location(str(path), line, column),
+                       f"class '{user_file.required_class}' lacks the function "
+                       f"'{name}' of the model; {skeleton}")
+            for name in user_file.required_functions
+            if not re.search(rf'\b{re.escape(name)}\s*\(', body)]
+
+
+#: C++ comments, string and character literals, and preprocessor lines.
+_CPP_NOISE = re.compile(
+    r'//[^\n]*|/\*.*?\*/|"(?:\\.|[^"\\\n])*"|\'(?:\\.|[^\'\\\n])*\'|^[ \t]*#[^\n]*',
+    re.DOTALL | re.MULTILINE)
 
 
 def create_missing_user_files(plan: PackagePlan) -> list[Path]:
@@ -102,6 +151,14 @@ def generate_package(plan: PackagePlan, out_dir: Path) -> GenerationReport:
         outputs[user_file.package_path] = (source.read_bytes(), False)
         copies.add(user_file.package_path)
     if problems:
+        problems = [_with_skeleton_path(d, plan, out_dir) for d in problems]
+        for user_file in plan.user_files:
+            # an error that points at a skeleton finds it up to date
+            path = out_dir / user_file.skeleton_path
+            if user_file.skeleton_path in outputs and \
+                    any(str(path) in d.message for d in problems):
+                data, executable = outputs[user_file.skeleton_path]
+                write_generated(path, data, executable=executable)
         raise RobmosysError(problems)
 
     report = GenerationReport()

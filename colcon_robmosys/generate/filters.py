@@ -59,9 +59,42 @@ def yaml_value(value: Any) -> str:
     return json.dumps(value, ensure_ascii=False)
 
 
+_CPP_ESCAPES = {'\\': '\\\\', '"': '\\"', '\n': '\\n', '\t': '\\t',
+                '\r': '\\r', '?': '\\?'}
+
+
 def cpp_str(text: Any) -> str:
-    """Write a C++ string literal."""
-    return json.dumps(str(text), ensure_ascii=True)
+    r"""Write a C++ string literal, in plain ASCII.
+
+    Other bytes of the UTF-8 text become three-digit octal escapes, which
+    (unlike ``\x``) cannot swallow the character that follows; ``?`` is
+    escaped so that no trigraph forms.
+    """
+    out = []
+    for char in str(text):
+        if char in _CPP_ESCAPES:
+            out.append(_CPP_ESCAPES[char])
+        elif ' ' <= char <= '~':
+            out.append(char)
+        else:
+            out.extend(f'\\{byte:03o}' for byte in char.encode('utf-8'))
+    return '"' + ''.join(out) + '"'
+
+
+def cpp_comment(text: Any, prefix: str = '//') -> str:
+    """Turn text into C++ line comments (``//``, or ``///`` for Doxygen).
+
+    A comment line ending in a backslash would continue onto the next line
+    of code, so such a line gets a closing period.
+    """
+    lines = str(text).strip().splitlines() or ['']
+    out = []
+    for line in lines:
+        line = f'{prefix} {line}'.rstrip()
+        if line.endswith('\\'):
+            line += '.'
+        out.append(line)
+    return '\n'.join(out)
 
 
 def cmake_str(text: Any) -> str:
@@ -86,6 +119,7 @@ FILTERS: dict[str, Callable[..., str]] = {
     'py_docstring': py_docstring,
     'yaml_value': yaml_value,
     'cpp_str': cpp_str,
+    'cpp_comment': cpp_comment,
     'cmake_str': cmake_str,
     'dot_str': dot_str,
 }
