@@ -37,6 +37,9 @@ def test_colcon_list_shows_one_package_per_model(workspace):
         ('add_client', '(robmosys.component)'),
         ('add_server', '(robmosys.component)'),
         ('cpp_client', '(robmosys.component)'),
+        ('cpp_dummy_joint_states', '(robmosys.component)'),
+        ('cpp_dummy_laser', '(robmosys.component)'),
+        ('cpp_dummy_map_server', '(robmosys.component)'),
         ('cpp_level_sensor', '(robmosys.component)'),
         ('cpp_level_watcher', '(robmosys.component)'),
         ('cpp_publisher', '(robmosys.component)'),
@@ -48,6 +51,7 @@ def test_colcon_list_shows_one_package_per_model(workspace):
         ('dummy_laser', '(robmosys.component)'),
         ('dummy_map_server', '(robmosys.component)'),
         ('dummy_robot_bringup', '(robmosys.system)'),
+        ('dummy_robot_cpp_bringup', '(robmosys.system)'),
         ('dummy_robot_monitor', '(robmosys.component)'),
         ('example_msgs', '(robmosys.interfaces)'),
         ('examples_system', '(robmosys.system)'),
@@ -119,9 +123,10 @@ def test_generate_creates_missing_implementation_only(workspace):
     assert (generated / 'src-skel' / 'subscriber' / 'Subscriber_impl_skel.py').is_file()
     assert (generated / 'subscriber' / 'Subscriber_impl.py').read_bytes() == mine
     assert sorted(p.name for p in (workspace / 'gen').iterdir()) == [
-        'add_client', 'add_server', 'cpp_client', 'cpp_level_sensor', 'cpp_level_watcher',
-        'cpp_publisher', 'cpp_receiver', 'cpp_sender', 'cpp_server', 'cpp_subscriber',
-        'dummy_joint_states', 'dummy_laser', 'dummy_map_server', 'dummy_robot_bringup',
+        'add_client', 'add_server', 'cpp_client', 'cpp_dummy_joint_states', 'cpp_dummy_laser',
+        'cpp_dummy_map_server', 'cpp_level_sensor', 'cpp_level_watcher', 'cpp_publisher',
+        'cpp_receiver', 'cpp_sender', 'cpp_server', 'cpp_subscriber', 'dummy_joint_states',
+        'dummy_laser', 'dummy_map_server', 'dummy_robot_bringup', 'dummy_robot_cpp_bringup',
         'dummy_robot_monitor', 'example_msgs', 'examples_system', 'fibonacci_client',
         'fibonacci_server', 'level_sensor', 'level_watcher', 'mixed_system', 'publisher',
         'pubsub_system', 'receiver', 'sender', 'simple_msgs', 'subscriber']

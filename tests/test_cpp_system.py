@@ -28,8 +28,9 @@ from harness.system import LifecycleDriver, read_launch_file, wait_until
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
-CPP_PACKAGES = ('cpp_client', 'cpp_level_sensor', 'cpp_level_watcher', 'cpp_publisher',
-                'cpp_receiver', 'cpp_sender', 'cpp_server', 'cpp_subscriber')
+CPP_PACKAGES = ('cpp_client', 'cpp_dummy_joint_states', 'cpp_dummy_laser',
+                'cpp_dummy_map_server', 'cpp_level_sensor', 'cpp_level_watcher',
+                'cpp_publisher', 'cpp_receiver', 'cpp_sender', 'cpp_server', 'cpp_subscriber')
 SYSTEM = 'mixed_system'
 
 

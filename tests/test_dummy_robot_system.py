@@ -6,6 +6,9 @@ The nodes are started as the generated launch.py says (executables, names,
 namespaces, remappings, parameter file), activated through their lifecycle
 services in the order activate.py follows, and every connection of the system
 model is seen carrying data, with the values the parameter overrides set.
+Two systems are brought up so: dummy_robot_bringup (Python components) and
+dummy_robot_cpp_bringup (the C++ components cpp_dummy_* with the Python
+monitor), which needs rclcpp and skips with the reason where it is missing.
 """
 
 from __future__ import annotations
@@ -15,10 +18,11 @@ from pathlib import Path
 import sys
 
 import pytest
+from test_cpp_system import requires_rclcpp
 
 from colcon_robmosys.model import find_model_files, load_workspace
 from colcon_robmosys.model.index import InterfaceIndex
-from colcon_robmosys.model.types import Component, Instance, System
+from colcon_robmosys.model.types import Component, Instance, Language, System
 from conftest import requires_ros, TEST_WORKSPACE
 from harness.ros_env import background
 from harness.system import (
@@ -27,13 +31,14 @@ from harness.system import (
 pytestmark = [pytest.mark.integration, requires_ros]
 
 SYSTEM = 'dummy_robot_bringup'
+CPP_SYSTEM = 'dummy_robot_cpp_bringup'
 
 
-def _model() -> tuple[System, dict[str, Component]]:
+def _model(package: str = SYSTEM) -> tuple[System, dict[str, Component]]:
     result = load_workspace(find_model_files([TEST_WORKSPACE / 'src']),
                             InterfaceIndex([Path(sys.prefix)]))
     result.raise_errors()
-    system = result.workspace.model(SYSTEM)
+    system = result.workspace.model(package)
     assert isinstance(system, System)
     components = {}
     for instance in system.instances:
@@ -56,22 +61,33 @@ def effective_parameters(instance: Instance, component: Component) -> dict[str, 
 
 
 def expected_report(component: Component, values: dict[str, object]) -> str:
-    """Return the line a monitor logs for what an instance publishes."""
-    if component.package == 'dummy_map_server':
+    """Return the line a monitor logs for what an instance publishes.
+
+    The C++ components (cpp_dummy_*) publish what the Python ones do.
+    """
+    package = component.package.removeprefix('cpp_')
+    if package == 'dummy_map_server':
         width, height = values['width'], values['height']
         occupied = 2 * width + 2 * (height - 2)
         return (f"map in {values['frame_id']}: {width} x {height} cells of "
                 f"{values['resolution']:.2f} m, {occupied} occupied")
-    if component.package == 'dummy_laser':
+    if package == 'dummy_laser':
         return f"scan from {values['frame_id']}: {values['samples']} ranges"
-    assert component.package == 'dummy_joint_states', component.package
+    assert package == 'dummy_joint_states', component.package
     return f"joint states of {','.join(values['joint_names'])}"
 
 
+@pytest.mark.parametrize('package', [
+    SYSTEM, pytest.param(CPP_SYSTEM, marks=requires_rclcpp)])
 def test_dummy_robot_comes_up_in_order_and_every_connection_carries_data(
-        test_workspace_built, domain_id):
-    system, components = _model()
-    share = test_workspace_built.share(SYSTEM)
+        test_workspace_built, domain_id, package):
+    system, components = _model(package)
+    if package == CPP_SYSTEM:
+        assert {c.language for c in components.values()} == {Language.CPP, Language.PYTHON}
+        assert {c.package for c in components.values()} == {
+            'cpp_dummy_map_server', 'cpp_dummy_joint_states', 'cpp_dummy_laser',
+            'dummy_robot_monitor'}
+    share = test_workspace_built.share(package)
     nodes = {n.name: n for n in read_launch_file(share / 'launch' / 'launch.py', share)}
     assert set(nodes) == {i.name for i in system.instances}
     order = read_activate_after(share / 'launch' / 'activate.py')

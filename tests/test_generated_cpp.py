@@ -72,9 +72,10 @@ def _tree(root: Path) -> dict[str, bytes]:
 
 
 def test_examples_hold_every_cpp_pattern():
-    assert CPP_PACKAGES == ['all_ports', 'cpp_client', 'cpp_level_sensor', 'cpp_level_watcher',
-                            'cpp_publisher', 'cpp_receiver', 'cpp_sender', 'cpp_server',
-                            'cpp_subscriber']
+    assert CPP_PACKAGES == ['all_ports', 'cpp_client', 'cpp_dummy_joint_states',
+                            'cpp_dummy_laser', 'cpp_dummy_map_server', 'cpp_level_sensor',
+                            'cpp_level_watcher', 'cpp_publisher', 'cpp_receiver', 'cpp_sender',
+                            'cpp_server', 'cpp_subscriber']
 
 
 @pytest.mark.parametrize('package', CPP_PACKAGES)

@@ -380,9 +380,10 @@ def test_example_workspace(tmp_path):
     assert result.diagnostics == []
     workspace = result.workspace
     assert sorted(m.package for m in workspace.models) == [
-        'add_client', 'add_server', 'cpp_client', 'cpp_level_sensor', 'cpp_level_watcher',
-        'cpp_publisher', 'cpp_receiver', 'cpp_sender', 'cpp_server', 'cpp_subscriber',
-        'dummy_joint_states', 'dummy_laser', 'dummy_map_server', 'dummy_robot_bringup',
+        'add_client', 'add_server', 'cpp_client', 'cpp_dummy_joint_states', 'cpp_dummy_laser',
+        'cpp_dummy_map_server', 'cpp_level_sensor', 'cpp_level_watcher', 'cpp_publisher',
+        'cpp_receiver', 'cpp_sender', 'cpp_server', 'cpp_subscriber', 'dummy_joint_states',
+        'dummy_laser', 'dummy_map_server', 'dummy_robot_bringup', 'dummy_robot_cpp_bringup',
         'dummy_robot_monitor', 'example_msgs', 'examples_system', 'fibonacci_client',
         'fibonacci_server', 'level_sensor', 'level_watcher', 'mixed_system', 'publisher',
         'pubsub_system', 'receiver', 'sender', 'simple_msgs', 'subscriber']

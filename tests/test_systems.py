@@ -85,7 +85,8 @@ def generated(tmp_path_factory) -> Path:
 
 
 def test_every_example_system_is_checked():
-    assert SYSTEMS == ['dummy_robot_bringup', 'examples_system', 'mixed_system', 'pubsub_system']
+    assert SYSTEMS == ['dummy_robot_bringup', 'dummy_robot_cpp_bringup', 'examples_system',
+                       'mixed_system', 'pubsub_system']
 
 
 def _launch_files(package: str) -> list[str]:

@@ -292,7 +292,8 @@ Everything::CallbackReturn Everything::on_configure(
   const rclcpp_lifecycle::State & /*state*/)
 {
   try {
-    pTick = create_publisher<all_ports_msgs::msg::Tick>("pTick", qos_pTick());
+    pTick = create_publisher<all_ports_msgs::msg::Tick>(
+      "pTick", qos_pTick());
     rclcpp::SubscriptionOptions rTick_options;
     rTick_options.callback_group = cbg_OnTick_;
     rTick = create_subscription<all_ports_msgs::msg::Tick>(

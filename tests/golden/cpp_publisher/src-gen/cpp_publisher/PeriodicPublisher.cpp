@@ -90,7 +90,8 @@ PeriodicPublisher::CallbackReturn PeriodicPublisher::on_configure(
   const rclcpp_lifecycle::State & /*state*/)
 {
   try {
-    pMap = create_publisher<simple_msgs::msg::Map>("pMap", qos_pMap());
+    pMap = create_publisher<simple_msgs::msg::Map>(
+      "pMap", qos_pMap());
     // created cancelled: the activity starts on activate
     timer_Activity1_ = create_wall_timer(
       std::chrono::nanoseconds(500000000), [this]() {run_Activity1_();},

@@ -113,7 +113,8 @@ Sender::CallbackReturn Sender::on_configure(
   const rclcpp_lifecycle::State & /*state*/)
 {
   try {
-    sMap = create_publisher<simple_msgs::msg::Map>("sMap", qos_sMap());
+    sMap = create_publisher<simple_msgs::msg::Map>(
+      "sMap", qos_sMap());
     // created cancelled: the activity starts on activate
     timer_Send_ = create_wall_timer(
       std::chrono::nanoseconds(500000000), [this]() {run_Send_();},
