@@ -15,24 +15,11 @@ from typing import Any
 
 from colcon_robmosys.model.qos import resolve_qos
 from colcon_robmosys.model.types import (
-    Activity, Component, InterfaceRef, Parameter, Pattern, Port, QoS, Role)
+    Activity, Component, InterfaceRef, Parameter, Pattern, Port, QoS)
 from colcon_robmosys.model.workspace import model_dependencies
-from colcon_robmosys.ros2.common import banner_context, package_xml_context
+from colcon_robmosys.ros2.common import (
+    banner_context, ENTITIES, package_xml_context)
 from colcon_robmosys.ros2.plan import FileSpec, PackagePlan, UserFile
-
-#: What each port becomes in rclpy, by pattern and role.
-ENTITIES = {
-    (Pattern.PUSH, Role.PROVIDED): 'publisher',
-    (Pattern.SEND, Role.REQUIRED): 'publisher',
-    (Pattern.PUSH, Role.REQUIRED): 'subscription',
-    (Pattern.SEND, Role.PROVIDED): 'subscription',
-    (Pattern.QUERY, Role.PROVIDED): 'service',
-    (Pattern.QUERY, Role.REQUIRED): 'client',
-    (Pattern.ACTION, Role.PROVIDED): 'action_server',
-    (Pattern.ACTION, Role.REQUIRED): 'action_client',
-    (Pattern.EVENT, Role.PROVIDED): 'event_server',
-    (Pattern.EVENT, Role.REQUIRED): 'event_client',
-}
 
 #: The helper classes of the node module each entity needs.
 HELPERS = {
