@@ -6,18 +6,35 @@
 from __future__ import annotations
 
 import json
+import re
 from typing import Any, Callable
 from xml.sax.saxutils import escape as _xml_escape
 
 
 def xml(text: Any) -> str:
-    """Escape text for XML element content and attribute values."""
-    return _xml_escape(str(text), {'"': '&quot;', "'": '&apos;'})
+    """Escape text for XML element content and attribute values.
+
+    A carriage return is written as a character reference: XML parsers
+    turn a raw one into a newline.
+    """
+    return _xml_escape(str(text), {'"': '&quot;', "'": '&apos;',
+                                   '\r': '&#13;'})
+
+
+def xml_attr(text: Any) -> str:
+    """Escape text for an XML attribute value, keeping its white space.
+
+    Parsers replace raw tabs and newlines in attribute values by spaces.
+    """
+    return xml(text).replace('\n', '&#10;').replace('\t', '&#9;')
 
 
 def xml_comment(text: Any) -> str:
-    """Make text safe inside an XML comment (no ``--``)."""
-    return str(text).replace('--', '- -').replace('\n', ' ')
+    """Make text safe inside an XML comment: no ``--``, no final ``-``."""
+    text = ' '.join(str(text).splitlines())
+    while '--' in text:
+        text = text.replace('--', '- -')
+    return text + ' ' if text.endswith('-') else text
 
 
 def hash_comment(text: Any) -> str:
@@ -52,23 +69,73 @@ def py_docstring(text: Any, indent: int = 0) -> str:
     return f'\n{pad}{summary}\n\n{rest}\n{pad}'
 
 
+#: What a YAML double-quoted scalar must escape: its quote, backslash and
+#: every character YAML does not allow raw or reads as a line break.
+_YAML_ESCAPED = re.compile(
+    '["\\\\\x00-\x1f\x7f-\x9f\u2028\u2029\ud800-\udfff\ufffe\uffff]')
+
+
+def _yaml_escape(match: re.Match[str]) -> str:
+    char = match.group()
+    if char in '"\\':
+        return '\\' + char
+    code = ord(char)
+    return f'\\x{code:02x}' if code < 0x100 else f'\\u{code:04x}'
+
+
 def yaml_value(value: Any) -> str:
-    """Write a value as a YAML flow scalar or sequence (JSON is YAML)."""
-    if isinstance(value, tuple):
-        value = list(value)
-    return json.dumps(value, ensure_ascii=False)
+    """Write a value as a YAML flow scalar or sequence.
+
+    Strings are double-quoted, with escapes only where YAML needs them, so
+    that the file reads back exactly the text of the model.
+    """
+    if isinstance(value, (tuple, list)):
+        return '[' + ', '.join(yaml_value(v) for v in value) + ']'
+    if isinstance(value, str):
+        return '"' + _YAML_ESCAPED.sub(_yaml_escape, value) + '"'
+    return json.dumps(value)
+
+
+_CPP_SIMPLE_ESCAPES = {
+    '"': '\\"', '\\': '\\\\', '\n': '\\n', '\t': '\\t', '\r': '\\r',
+    # '??' could start a trigraph where a compiler still reads them
+    '?': '\\?',
+}
 
 
 def cpp_str(text: Any) -> str:
-    """Write a C++ string literal."""
-    return json.dumps(str(text), ensure_ascii=True)
+    """Write a C++ string literal of the text, in plain ASCII.
+
+    Other characters become octal escapes (at most three digits, so that a
+    following digit is not read into them) or universal character names.
+    """
+    out = []
+    for char in str(text):
+        code = ord(char)
+        if char in _CPP_SIMPLE_ESCAPES:
+            out.append(_CPP_SIMPLE_ESCAPES[char])
+        elif code < 0x20 or code == 0x7f:
+            out.append(f'\\{code:03o}')
+        elif code < 0x80:
+            out.append(char)
+        elif code < 0x10000:
+            out.append(f'\\u{code:04x}')
+        else:
+            out.append(f'\\U{code:08x}')
+    return '"' + ''.join(out) + '"'
+
+
+_CMAKE_ESCAPES = {'\\': '\\\\', '"': '\\"', '$': '\\$', '\n': '\\n',
+                  '\r': '\\r', '\t': '\\t'}
 
 
 def cmake_str(text: Any) -> str:
-    """Write a quoted CMake argument: no variable or generator expansion."""
-    escaped = str(text).replace('\\', '\\\\').replace('"', '\\"')
-    escaped = escaped.replace('$', '\\$').replace(';', '\\;')
-    return f'"{escaped}"'
+    """Write a quoted CMake argument: no variable or generator expansion.
+
+    A quoted argument is never split at ``;``, so ``;`` stays as it is
+    (``\\;`` would keep its backslash there).
+    """
+    return '"' + ''.join(_CMAKE_ESCAPES.get(c, c) for c in str(text)) + '"'
 
 
 def dot_str(text: Any) -> str:
@@ -79,6 +146,7 @@ def dot_str(text: Any) -> str:
 
 FILTERS: dict[str, Callable[..., str]] = {
     'xml': xml,
+    'xml_attr': xml_attr,
     'xml_comment': xml_comment,
     'msg_comment': hash_comment,
     'hash_comment': hash_comment,

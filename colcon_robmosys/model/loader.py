@@ -9,6 +9,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import re
+
 import yaml
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
@@ -22,6 +24,12 @@ MAX_MODEL_BYTES = 4 * 1024 * 1024
 #: How many values aliases may repeat in all: the data is shared, but every
 #: later step (validation, messages, generated files) walks it expanded.
 MAX_ALIASED_VALUES = 100_000
+
+#: What YAML allows in a file (YAML 1.1, 5.1): an escape in a quoted
+#: string could still produce anything else, which no generated file can
+#: carry (XML has no NUL, UTF-8 no lone surrogate).
+_NOT_PRINTABLE = re.compile(
+    '[^\t\n\r\x20-\x7e\x85\xa0-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]')
 
 _MERGE_TAG = 'tag:yaml.org,2002:merge'
 _MAP_TAG = 'tag:yaml.org,2002:map'
@@ -110,6 +118,8 @@ class _Builder:
             explicit_keys: set[str] = set()
             for index, (key_node, value_node) in enumerate(node.value):
                 key = self._loader.construct_object(key_node, deep=True)
+                if isinstance(key, str) and self._unprintable(key_node, key):
+                    continue
                 if not isinstance(key, str):
                     self.diagnostics.append(Diagnostic(
                         self.location(key_node),
@@ -140,9 +150,23 @@ class _Builder:
                 self._sizes.get(id(v), 0) for v in node.value)
             return items
         value = self._loader.construct_object(node, deep=True)
+        if isinstance(value, str) and self._unprintable(node, value):
+            value = _NOT_PRINTABLE.sub('\ufffd', value)
         self._built[id(node)] = value
         self._sizes[id(node)] = 1
         return value
+
+    def _unprintable(self, node: yaml.Node, text: str) -> bool:
+        """Report a character of a string that YAML does not allow raw."""
+        found = _NOT_PRINTABLE.search(text)
+        if found is None:
+            return False
+        self.diagnostics.append(Diagnostic(
+            self.location(node),
+            f'the string holds the character U+{ord(found.group()):04X}, '
+            'which a model may not hold: only printable characters, tabs '
+            'and line breaks can reach the generated files'))
+        return True
 
     def _alias(self, node: yaml.Node, path: NodePath) -> Any:
         """Return the data of a node met again, through an alias."""
