@@ -41,7 +41,7 @@ HOSTILE = [
     'dashes -- in --> comments -', '# not a comment', '-->',
     'ünïcødé ✓ 日本語 😀 \u00a0nbsp \u2028separator \x85next',
     ': colon [flow, {map}] &anchor *alias !tag |',
-    'null', 'yes', '0x10', ' leading and trailing ', "<![CDATA[ x ]]> &amp; & ;semi;colons;",
+    'null', 'yes', '0x10', ' leading and trailing ', '<![CDATA[ x ]]> &amp; & ;semi;colons;',
 ]
 
 

@@ -132,8 +132,8 @@ _CMAKE_ESCAPES = {'\\': '\\\\', '"': '\\"', '$': '\\$', '\n': '\\n',
 def cmake_str(text: Any) -> str:
     """Write a quoted CMake argument: no variable or generator expansion.
 
-    A quoted argument is never split at ``;``, so ``;`` stays as it is
-    (``\\;`` would keep its backslash there).
+    A quoted argument is never split at semicolons, so they stay as they
+    are (an escaped one would keep its backslash there).
     """
     return '"' + ''.join(_CMAKE_ESCAPES.get(c, c) for c in str(text)) + '"'
 

@@ -143,7 +143,7 @@ def _scalar_problem(field_type: FieldType, value: Any) -> str | None:
                        not c.isprintable()), None)
         if unsafe is not None:
             return (f'the string {value!r} holds {unsafe!r}, which the .msg '
-                    "format cannot carry in a value (it has no escapes for "
+                    'format cannot carry in a value (it has no escapes for '
                     "'#', '=', '\\' and control characters)")
         return None
     if primitive in ('float32', 'float64'):

@@ -1,10 +1,10 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-"""Naming rules: what a name must be to work in ROS 2, C++ and Python.
+r"""Naming rules: what a name must be to work in ROS 2, C++ and Python.
 
-The patterns end with ``\\Z``, not ``$``: ``$`` also matches before a final
-newline, which would let ``"name\\n"`` through.
+The patterns end with ``\Z``, not ``$``, which also matches before a final
+newline and would let a name followed by a newline through.
 """
 
 from __future__ import annotations
