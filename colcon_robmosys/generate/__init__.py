@@ -13,7 +13,8 @@ from pathlib import Path
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
 from colcon_robmosys.generate.render import render
 from colcon_robmosys.generate.writer import (
-    create_user_file, is_generated, remove_generated, write_generated)
+    create_user_file, is_generated, remove_generated, remove_leftovers,
+    write_generated)
 from colcon_robmosys.ros2.plan import PackagePlan, UserFile
 
 #: Lists, inside a generated package, the files the generation wrote.
@@ -104,8 +105,19 @@ def generate_package(plan: PackagePlan, out_dir: Path) -> GenerationReport:
         raise RobmosysError(problems)
 
     report = GenerationReport()
+    if out_dir.is_dir():
+        report.removed += remove_leftovers(out_dir)
     manifest_path = out_dir / MANIFEST
     previous = read_manifest(manifest_path)
+    final = {relative: {_digest(data)}
+             for relative, (data, _) in outputs.items()}
+    # a run killed half-way must leave every file it wrote known as ours:
+    # first record the old and the new content of each file, then write
+    pending = {relative: (previous.get(relative) or set()) | digests
+               for relative, digests in final.items()}
+    pending.update((r, d) for r, d in previous.items() if r not in final)
+    if pending != previous:
+        _write_manifest(manifest_path, pending)
     for relative, (data, executable) in sorted(outputs.items()):
         path = out_dir / relative
         if write_generated(path, data, executable=executable,
@@ -121,49 +133,53 @@ def generate_package(plan: PackagePlan, out_dir: Path) -> GenerationReport:
             continue
         if remove_generated(path, out_dir):
             report.removed.append(path)
-    write_generated(manifest_path, (
-        f'# {GENERATED_NOTE}\n' + ''.join(
-            f'{_digest(data)}  {relative}\n'
-            for relative, (data, _) in sorted(outputs.items()))
-    ).encode('utf-8'), owned=True)
+    _write_manifest(manifest_path, final)
     return report
 
 
-def read_manifest(path: Path) -> dict[str, str | None]:
-    """Return the files a generation wrote, with the digest of each.
+#: The files of a generation -> the digests of the contents it may have
+#: written there; None for a manifest written before digests were recorded.
+Manifest = dict[str, 'set[str] | None']
 
-    A manifest written before digests were recorded gives None digests.
-    """
+
+def read_manifest(path: Path) -> Manifest:
+    """Return the files a generation wrote, with the digests of each."""
     try:
         lines = path.read_text(encoding='utf-8').split('\n')
     except FileNotFoundError:
         return {}
-    files: dict[str, str | None] = {}
+    files: Manifest = {}
     for line in lines:
         if not line or line.startswith('#'):
             continue
         digest, sep, relative = line.partition('  ')
         if sep and len(digest) == 64:
-            files[relative] = digest
+            files.setdefault(relative, set()).add(digest)  # type: ignore
         else:
             files[line] = None
     return files
+
+
+def _write_manifest(path: Path, files: Manifest) -> None:
+    write_generated(path, (f'# {GENERATED_NOTE}\n' + ''.join(
+        f'{digest}  {relative}\n' for relative in sorted(files)
+        for digest in sorted(files[relative] or ())
+    )).encode('utf-8'), owned=True)
 
 
 def _digest(data: bytes) -> str:
     return hashlib.sha256(data).hexdigest()
 
 
-def _unchanged_since(path: Path, previous: dict[str, str | None],
-                     relative: str) -> bool:
-    """Say whether a file is still what the last generation wrote there."""
+def _unchanged_since(path: Path, previous: Manifest, relative: str) -> bool:
+    """Say whether a file still holds what a generation wrote there."""
     if relative not in previous:
         return False
-    digest = previous[relative]
-    if digest is None:
+    digests = previous[relative]
+    if digests is None:
         return True  # an old manifest: trust it as before
     try:
-        return _digest(path.read_bytes()) == digest
+        return _digest(path.read_bytes()) in digests
     except OSError:
         return False
 
