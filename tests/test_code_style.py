@@ -1,9 +1,13 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
-"""Our own code meets the style we ask of generated code (flake8, as colcon does)."""
+"""Our own code meets the style we ask of generated code (flake8, as colcon does).
+
+mypy checks the type hints the house style asks for.
+"""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 import subprocess
 import sys
@@ -18,5 +22,14 @@ def test_flake8():
     result = subprocess.run(
         [sys.executable, '-m', 'flake8', '--config', str(REPO / 'setup.cfg'),
          'colcon_robmosys', 'tests', 'tools'],
+        cwd=REPO, capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stdout + result.stderr
+
+
+def test_mypy():
+    pytest.importorskip('mypy', reason='mypy is installed by `make test`')
+    result = subprocess.run(
+        [sys.executable, '-m', 'mypy', '--config-file', str(REPO / 'setup.cfg'),
+         '--cache-dir', os.devnull, 'colcon_robmosys'],
         cwd=REPO, capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stdout + result.stderr

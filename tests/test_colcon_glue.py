@@ -33,6 +33,11 @@ def test_colcon_list_shows_one_package_per_model(workspace):
     assert result.returncode == 0, result.stderr
     rows = sorted(tuple(line.split('\t')[::2]) for line in result.stdout.splitlines())
     assert rows == [
+        ('dummy_joint_states', '(robmosys.component)'),
+        ('dummy_laser', '(robmosys.component)'),
+        ('dummy_map_server', '(robmosys.component)'),
+        ('dummy_robot_bringup', '(robmosys.system)'),
+        ('dummy_robot_monitor', '(robmosys.component)'),
         ('map_tools', '(ros.ament_cmake)'),
         ('publisher', '(robmosys.component)'),
         ('pubsub_system', '(robmosys.system)'),
@@ -94,7 +99,8 @@ def test_generate_creates_missing_implementation_only(workspace):
     assert (generated / 'src-skel' / 'subscriber' / 'Subscriber_impl_skel.py').is_file()
     assert (generated / 'subscriber' / 'Subscriber_impl.py').read_bytes() == mine
     assert sorted(p.name for p in (workspace / 'gen').iterdir()) == [
-        'publisher', 'pubsub_system', 'simple_msgs', 'subscriber']
+        'dummy_joint_states', 'dummy_laser', 'dummy_map_server', 'dummy_robot_bringup',
+        'dummy_robot_monitor', 'publisher', 'pubsub_system', 'simple_msgs', 'subscriber']
 
 
 def test_generate_honours_package_selection(workspace):

@@ -70,3 +70,26 @@ def test_launch_leaves_the_nodes_unconfigured(test_workspace_built, launch_env, 
             assert driver.state('/subscriber') == 'unconfigured'
             assert driver.parameters('/publisher', ['indoor', 'noOfScans']) == \
                 {'indoor': True, 'noOfScans': 3}
+
+
+def test_dummy_robot_activates_in_order_and_wires_every_connection(
+        test_workspace_built, launch_env, domain_id):
+    """activate.py of dummy_robot_bringup: every connection carries data, the spare idles."""
+    from harness.system import LifecycleDriver
+    from test_dummy_robot_system import _model, effective_parameters, expected_report
+    system, components = _model()
+    wanted = set()
+    for connection in system.connections:
+        ends = sorted((connection.source.instance, connection.target.instance),
+                      key=lambda i: components[i].package == 'dummy_robot_monitor')
+        provider = system.instance(ends[0])
+        wanted.add(expected_report(components[ends[0]],
+                                   effective_parameters(provider, components[ends[0]])))
+    share = test_workspace_built.share('dummy_robot_bringup')
+    with background([sys.executable, '-c', LAUNCHER, str(share / 'launch' / 'activate.py')],
+                    env=launch_env) as launched:
+        assert wait_until(lambda: all(w in launched.output() for w in wanted), timeout=60), \
+            launched.output()
+        with LifecycleDriver(domain_id) as driver:
+            assert driver.state('/spare/laser_spare') == 'unconfigured'
+            assert driver.state('/dummy_robot/monitor') == 'active'

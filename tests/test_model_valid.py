@@ -20,7 +20,7 @@ from colcon_robmosys.model.types import (
     Component, InterfaceKind, InterfaceRef, Language, Maintainer,
     ParameterRange, Pattern, Role, ServiceDefinition, Structure, System,
     Workspace)
-from harness.fake_ament import fake_ament_index
+from harness.fake_ament import EXAMPLE_EXTRA, fake_ament_index
 
 ROOT = Path(__file__).resolve().parent.parent
 VALID = sorted((ROOT / 'tests' / 'models' / 'valid').glob('*.yaml'))
@@ -374,11 +374,12 @@ def test_defaults_shared_by_the_models_of_a_file(workspace):
 # the example workspace ----------------------------------------------------
 
 def test_example_workspace(tmp_path):
-    result = load_workspace(EXAMPLES, fake_ament_index(tmp_path))
+    result = load_workspace(EXAMPLES, fake_ament_index(tmp_path, EXAMPLE_EXTRA))
     assert result.diagnostics == []
     workspace = result.workspace
     assert sorted(m.package for m in workspace.models) == [
-        'publisher', 'pubsub_system', 'simple_msgs', 'subscriber']
+        'dummy_joint_states', 'dummy_laser', 'dummy_map_server', 'dummy_robot_bringup',
+        'dummy_robot_monitor', 'publisher', 'pubsub_system', 'simple_msgs', 'subscriber']
 
     msgs = _model(workspace, 'simple_msgs', ServiceDefinition)
     ogm, map_ = msgs.communication_objects

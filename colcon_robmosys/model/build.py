@@ -8,7 +8,7 @@ from __future__ import annotations
 import ast
 import math
 import textwrap
-from typing import Any, Callable, TypeVar
+from typing import Any, Callable, Iterable, TypeVar
 
 from colcon_robmosys.errors import Diagnostic, Location
 from colcon_robmosys.model import names
@@ -84,11 +84,11 @@ def freeze_parameter_value(type_name: str, value: Any) -> Any:
 class FileBuilder:
     """Build the typed models of one loaded, structurally valid file."""
 
-    def __init__(self, loaded: LoadedFile):
+    def __init__(self, loaded: LoadedFile) -> None:
         self.loaded = loaded
         self.diagnostics: list[Diagnostic] = []
 
-    def error(self, path: NodePath, message: str, *, key: bool = False):
+    def error(self, path: NodePath, message: str, *, key: bool = False) -> None:
         """Record a problem at the node of that path."""
         self.diagnostics.append(
             Diagnostic(self.loaded.location(path, key=key), message))
@@ -193,11 +193,11 @@ class FileBuilder:
         for name, body in raw.get('actions', {}).items():
             named('actions', name)
             apath = path + ('actions', name)
+            goal, result, feedback = (
+                self._structure(apath + (part,), body.get(part, {}), package)
+                for part in ('goal', 'result', 'feedback'))
             actions.append(Action(
-                name, body.get('description', ''),
-                *(self._structure(apath + (part,), body.get(part, {}),
-                                  package)
-                  for part in ('goal', 'result', 'feedback')),
+                name, body.get('description', ''), goal, result, feedback,
                 self.at(apath, key=True)))
         if not (objects or queries or actions):
             self.error(path, f"service definition '{package}' defines no "
@@ -348,8 +348,10 @@ class FileBuilder:
                          functions, parameters, tuple(lifecycle),
                          self.at(path + ('name',)))
 
-    def _check_member_names(self, path, ports, functions, activities,
-                            parameters) -> None:
+    def _check_member_names(
+            self, path: NodePath, ports: tuple[Port, ...],
+            functions: tuple[Function, ...], activities: list[Activity],
+            parameters: tuple[Parameter, ...]) -> None:
         owners: dict[str, str] = {}
         for section, items in (('ports', ports), ('functions', functions),
                                ('activities', activities)):
@@ -515,7 +517,7 @@ def _strip_kind(text: str) -> str:
     return f'{parts[0]}/{parts[-1]}'
 
 
-def _choices(known) -> str:
+def _choices(known: Iterable[str]) -> str:
     if not known:
         return ' (none is defined)'
     return f" (known: {', '.join(sorted(known))})"

@@ -105,7 +105,7 @@ def _message(error: ValidationError) -> tuple[str, bool]:
     if validator == 'type':
         expected = error.validator_value
         kinds = expected if isinstance(expected, list) else [expected]
-        wanted = ' or '.join(_KIND_NAMES.get(k, k) for k in kinds)
+        wanted = ' or '.join(_KIND_NAMES.get(k, str(k)) for k in kinds)
         return (f'{_subject(path)} must be {wanted}, not '
                 f'{_describe(error.instance)}'), False
     if validator == 'enum':

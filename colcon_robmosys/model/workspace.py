@@ -7,18 +7,20 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Iterable, Sequence
+from typing import Any, Iterable, Iterator, Sequence
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
 from colcon_robmosys.model.build import (
     FileBuilder, parameter_value_problem)
 from colcon_robmosys.model.index import InterfaceIndex
 from colcon_robmosys.model.loader import load_file, LoadedFile
+from colcon_robmosys.model.names import connection_name, node_name
 from colcon_robmosys.model.qos import qos_incompatibility
 from colcon_robmosys.model.schema import check_structure
 from colcon_robmosys.model.types import (
-    Component, InterfaceKind, InterfaceRef, Model, ModelFile, Pattern, Port,
-    Role, ServiceDefinition, System, Workspace)
+    Component, Connection, Instance, InterfaceKind, InterfaceRef, Model,
+    ModelFile, Pattern, Port, PortRef, Role, ServiceDefinition, Structure,
+    System, Workspace)
 
 MODEL_FILE_NAME = 'robmosys.yaml'
 
@@ -42,6 +44,14 @@ class LoadResult:
     def errors_of(self, model_file: str) -> list[Diagnostic]:
         """Return the errors located in one model file."""
         return [d for d in self.errors if d.location.path == model_file]
+
+    #: package -> the warnings about its model
+    package_warnings: dict[str, list[Diagnostic]] = field(
+        default_factory=dict)
+
+    def warnings_of(self, package: str) -> list[Diagnostic]:
+        """Return the warnings about the model of one package."""
+        return self.package_warnings.get(package, [])
 
     def raise_errors(self) -> None:
         """Raise every error at once, if there is any."""
@@ -79,7 +89,8 @@ def load_workspace(paths: Iterable[Path],
     Every file is loaded even when others are broken, so that one run
     reports every problem of the workspace.
     """
-    files, diagnostics = [], []
+    files: list[ModelFile] = []
+    diagnostics: list[Diagnostic] = []
     broken: dict[str, list[tuple[str, str]]] = {}
     for path in sorted(set(paths)):
         try:
@@ -100,7 +111,8 @@ def load_workspace(paths: Iterable[Path],
     checker.check()
     diagnostics.extend(checker.diagnostics)
     return LoadResult(Workspace(tuple(files)), sorted(set(diagnostics)),
-                      broken)
+                      broken, {package: sorted(set(warnings)) for package,
+                               warnings in checker.package_warnings.items()})
 
 
 #: The package kind of each list of models in a file.
@@ -155,6 +167,7 @@ class _WorkspaceChecker:
         # is not checked, rather than reported as unknown
         self.broken_packages = frozenset(broken_packages)
         self.diagnostics: list[Diagnostic] = []
+        self.package_warnings: dict[str, list[Diagnostic]] = {}
         self.models: dict[str, Model] = {}
         self.definitions: dict[str, ServiceDefinition] = {}
         self.components: dict[str, Component] = {}
@@ -162,8 +175,11 @@ class _WorkspaceChecker:
     def error(self, location: Location, message: str) -> None:
         self.diagnostics.append(Diagnostic(location, message))
 
-    def warning(self, location: Location, message: str) -> None:
-        self.diagnostics.append(Diagnostic(location, message, 'warning'))
+    def warning(self, package: str, location: Location, message: str
+                ) -> None:
+        diagnostic = Diagnostic(location, message, 'warning')
+        self.diagnostics.append(diagnostic)
+        self.package_warnings.setdefault(package, []).append(diagnostic)
 
     def check(self) -> None:
         for model_file in self.files:
@@ -258,6 +274,12 @@ class _WorkspaceChecker:
         components: dict[str, Component] = {}
         node_names: dict[str, str] = {}
         for instance in system.instances:
+            if instance.component == system.package:
+                self.error(instance.location,
+                           f"instance '{instance.name}': package "
+                           f"'{instance.component}' is this system itself, "
+                           'not a component')
+                continue
             component = self.components.get(instance.component)
             if component is None and \
                     instance.component in self.broken_packages:
@@ -271,7 +293,7 @@ class _WorkspaceChecker:
                            f"'{instance.component}' {what}")
                 continue
             components[instance.name] = component
-            fqn = f'{instance.namespace}/{instance.name}'
+            fqn = node_name(instance.namespace, instance.name)
             if fqn in node_names:
                 self.error(instance.location,
                            f"instance '{instance.name}' has the node name "
@@ -291,8 +313,9 @@ class _WorkspaceChecker:
                                f"after '{after}', but '{unmanaged.name}' is "
                                'not activated by the system (activate: false)')
         connected: set[tuple[str, str]] = set()
+        names = _Names()
         for connection in system.connections:
-            ends = []
+            ends: list[tuple[PortRef, Port]] = []
             for ref in (connection.source, connection.target):
                 component = components.get(ref.instance)
                 if system.instance(ref.instance) is None:
@@ -307,40 +330,42 @@ class _WorkspaceChecker:
                                    f"'{component.name}' has no port "
                                    f"'{ref.port}'")
                     else:
-                        ends.append(port)
+                        ends.append((ref, port))
                         connected.add((ref.instance, ref.port))
-            if len(ends) == 2:
-                self._check_connection(connection.location, *ends)
+            if len(ends) == 2 and self._check_connection(
+                    connection.location, ends[0][1], ends[1][1]):
+                self._check_names(system, connection, ends, names)
         for instance in system.instances:
             component = components.get(instance.name)
             for port in component.ports if component else ():
                 if port.role is Role.REQUIRED and \
                         (instance.name, port.name) not in connected:
-                    self.warning(instance.location,
+                    self.warning(system.package, instance.location,
                                  f"required port '{instance.name}."
                                  f"{port.name}' is not connected")
 
     def _check_connection(self, location: Location, a: Port,
-                          b: Port) -> None:
+                          b: Port) -> bool:
+        """Check that two ports fit; return whether they do."""
         if a.pattern is not b.pattern:
-            self.error(location, f'cannot connect a {a.pattern.value} port '
-                       f"('{a.name}') to a {b.pattern.value} port "
+            self.error(location, f'cannot connect {_a(a.pattern.value)} '
+                       f"port ('{a.name}') to {_a(b.pattern.value)} port "
                        f"('{b.name}')")
-            return
+            return False
         if a.role is b.role:
             self.error(location, f'cannot connect two {a.role.value} ports '
                        f"('{a.name}', '{b.name}'): a connection joins a "
                        'provided port to a required one')
-            return
+            return False
         if a.type != b.type:
             self.error(location, f"type mismatch: '{a.name}' exchanges "
                        f"{a.type}, '{b.name}' exchanges {b.type}")
-            return
+            return False
         if a.activation != b.activation:
             self.error(location, f"activation type mismatch: '{a.name}' "
                        f"takes {a.activation}, '{b.name}' takes "
                        f'{b.activation}')
-            return
+            return False
         writer, reader = _writer_reader(a, b)
         if writer is not None and reader is not None:
             problem = qos_incompatibility(writer.qos, reader.qos)
@@ -348,8 +373,45 @@ class _WorkspaceChecker:
                 self.error(location, 'incompatible QoS between '
                            f"'{writer.name}' (writer) and '{reader.name}' "
                            f'(reader): {problem}')
+                return False
+        return True
 
-    def _check_overrides(self, instance, component: Component) -> None:
+    def _check_names(self, system: System, connection: Connection,
+                     ends: list[tuple[PortRef, Port]], names: _Names) -> None:
+        """Check the ROS 2 name a connection remaps its two ends to.
+
+        ROS 2 remaps a name once per node: a port in two connections must
+        take one name in both. One name carries one pattern and type, and a
+        service or action name has one server.
+        """
+        ref, port = next(e for e in ends if e[1].role is Role.PROVIDED)
+        instance = system.instance(ref.instance)
+        assert instance is not None
+        name = connection_name(instance.namespace, ref.instance, ref.port,
+                               connection.topic)
+        here = connection.location
+        for end, _ in ends:
+            key = (end.instance, end.port)
+            if key in names.of_port and names.of_port[key][0] != name:
+                other, where = names.of_port[key]
+                self.error(here, f"port '{end}' is connected to '{name}' "
+                           f"here but to '{other}' by the connection at "
+                           f'line {where.line}: ROS 2 remaps a port to one '
+                           'name (give both connections the same topic)')
+            names.of_port.setdefault(key, (name, here))
+        kind = f'{port.pattern.value} ports of {port.type}'
+        other_kind, where = names.kind.setdefault(name, (kind, here))
+        if other_kind != kind:
+            self.error(here, f"'{name}' connects {kind} here but "
+                       f'{other_kind} at line {where.line}')
+        if port.pattern in (Pattern.QUERY, Pattern.ACTION, Pattern.EVENT):
+            server, where = names.server.setdefault(name, (str(ref), here))
+            if server != str(ref):
+                self.error(here, f"'{name}' is served by '{ref}' here and "
+                           f"by '{server}' at line {where.line}: a "
+                           f'{port.pattern.value} name has one server')
+
+    def _check_overrides(self, instance: Instance, component: Component) -> None:
         parameters = {p.name: p for p in component.parameters}
         locations = instance.parameter_locations or \
             (instance.location,) * len(instance.parameters)
@@ -406,6 +468,24 @@ class _WorkspaceChecker:
                 'arrays or other messages)'))
 
 
+def _a(word: str) -> str:
+    """Return a word with its indefinite article."""
+    return f"{'an' if word[0] in 'aeiou' else 'a'} {word}"
+
+
+@dataclass
+class _Names:
+    """The ROS 2 names the connections of a system have used so far."""
+
+    #: (instance, port) -> its name and the connection that gave it
+    of_port: dict[tuple[str, str], tuple[str, Location]] = field(
+        default_factory=dict)
+    #: name -> the pattern and type of its ports, and where first seen
+    kind: dict[str, tuple[str, Location]] = field(default_factory=dict)
+    #: service, action or event name -> its server, and where first seen
+    server: dict[str, tuple[str, Location]] = field(default_factory=dict)
+
+
 def _writer_reader(a: Port, b: Port) -> tuple[Port | None, Port | None]:
     """Return which port writes and which reads a topic connection."""
     if a.pattern in (Pattern.QUERY, Pattern.ACTION):
@@ -431,11 +511,14 @@ def model_dependencies(model: Model) -> list[str]:
             if port.activation:
                 deps.append(port.activation.package)
     else:
-        deps.extend(i.component for i in model.instances)
+        # an instance of the system itself is an error of its own, not a
+        # dependency cycle as well
+        deps.extend(i.component for i in model.instances
+                    if i.component != model.package)
     return list(dict.fromkeys(deps))
 
 
-def _structures(definition: ServiceDefinition):
+def _structures(definition: ServiceDefinition) -> Iterator[Structure]:
     for obj in definition.communication_objects:
         yield obj.structure
     for query in definition.queries:
@@ -449,7 +532,8 @@ def _structures(definition: ServiceDefinition):
 
 def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
     """Return one cycle per strongly connected part that loops."""
-    cycles, state = [], {}
+    cycles: list[list[str]] = []
+    state: dict[str, int] = {}
     for start in sorted(graph):
         if state.get(start):
             continue

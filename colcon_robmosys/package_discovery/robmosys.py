@@ -52,11 +52,14 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
         if not model_files:
             return set()
         result = load_workspace(model_files)
+        # errors now, whatever the verb, since they stop what it does;
+        # warnings are told by the build of their package and by
+        # robmosys-generate, and only for the packages selected
         for diagnostic in result.diagnostics:
             if diagnostic.severity == 'error':
                 logger.error(str(diagnostic))
             else:
-                logger.warning(str(diagnostic))
+                logger.debug(str(diagnostic))
         descriptors = set()
         for model in result.workspace.models:
             kind = 'interfaces' if isinstance(model, ServiceDefinition) else \

@@ -148,7 +148,7 @@ def _port_context(port: Port, type_name: str,
 
 def _parameter_context(parameter: Parameter) -> dict[str, Any]:
     py_type, ros_type = _PARAMETER_TYPES[parameter.type]
-    default = parameter.default
+    default: Any = parameter.default
     if isinstance(default, tuple):
         default = list(default)
     if parameter.type == 'byte[]':

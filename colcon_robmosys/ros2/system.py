@@ -9,43 +9,52 @@ from pathlib import Path
 from typing import Any, Sequence
 
 from colcon_robmosys.model.build import freeze_parameter_value
+from colcon_robmosys.model.names import connection_name, node_name
 from colcon_robmosys.model.types import (
-    Component, Instance, Pattern, Role, System, Workspace)
+    Component, Connection, Instance, Pattern, PortRef, Role, System,
+    Workspace)
 from colcon_robmosys.ros2.common import banner_context, package_xml_context
 from colcon_robmosys.ros2.plan import FileSpec, PackagePlan
 
 PARAMS_FILE = 'cfg/params.yaml'
 
+#: The patterns whose data goes from the required port to the provided one.
+_TO_PROVIDER = (Pattern.SEND, Pattern.QUERY, Pattern.ACTION)
+
 
 def node_fqn(instance: Instance) -> str:
     """Return the fully qualified node name of an instance."""
-    return f'{instance.namespace}/{instance.name}'
+    return node_name(instance.namespace, instance.name)
+
+
+def provided_end(connection: Connection, components: dict[str, Component]
+                 ) -> PortRef:
+    """Return the end of a valid connection whose port is provided."""
+    for end in (connection.source, connection.target):
+        port = components[end.instance].port(end.port)
+        assert port is not None
+        if port.role is Role.PROVIDED:
+            return end
+    raise AssertionError(f'no provided end in {connection}')
 
 
 def connection_topics(system: System, components: dict[str, Component]
                       ) -> dict[tuple[str, str], str]:
     """Return the ROS 2 name every connected port is remapped to.
 
-    The provided end names a connection, ``/<namespace>/<instance>/<port>``
-    unless the model gives a topic: a publisher of a push port, the server
-    of a send, query or action port.
+    The provided end names a connection (see
+    :func:`colcon_robmosys.model.names.connection_name`): the publisher of
+    a push port, the server of a send, query, action or event port. The
+    validation made sure a port takes one name only.
     """
     topics: dict[tuple[str, str], str] = {}
     for connection in system.connections:
-        ends = (connection.source, connection.target)
-        provided = ends[0]
-        for end in ends:
-            instance = system.instance(end.instance)
-            component = components[end.instance]
-            port = component.port(end.port)
-            if port is not None and port.role is Role.PROVIDED:
-                provided = end
+        provided = provided_end(connection, components)
         instance = system.instance(provided.instance)
         assert instance is not None
-        topic = connection.topic or f'{node_fqn(instance)}/{provided.port}'
-        if not topic.startswith('/'):
-            topic = f'{instance.namespace}/{topic}'
-        for end in ends:
+        topic = connection_name(instance.namespace, provided.instance,
+                                provided.port, connection.topic)
+        for end in (connection.source, connection.target):
             topics[(end.instance, end.port)] = topic
     return topics
 
@@ -127,17 +136,22 @@ def _diagram(system: System, components: dict[str, Component],
     for instance in system.instances:
         component = components[instance.name]
         instances.append({
-            'name': instance.name, 'component': component.name,
-            'package': component.package,
+            'name': instance.name, 'fqn': node_fqn(instance),
+            'component': component.name, 'package': component.package,
+            'managed': instance.activate,
             'ports': [{'name': p.name, 'role': p.role.value,
                        'pattern': p.pattern.value} for p in component.ports],
         })
     edges = []
     for connection in system.connections:
-        source, target = connection.source, connection.target
+        source = provided_end(connection, components)
+        target = (connection.target if source == connection.source
+                  else connection.source)
         port = components[source.instance].port(source.port)
         assert port is not None
-        if port.role is Role.REQUIRED and port.pattern is not Pattern.SEND:
+        # arrows follow the data: from the publisher of push and event, to
+        # the server of send, query and action
+        if port.pattern in _TO_PROVIDER:
             source, target = target, source
         edges.append({
             'source': source.instance, 'source_port': source.port,
@@ -163,15 +177,17 @@ def plan_system(system: System, workspace: Workspace) -> PackagePlan:
     exec_depends = packages + ['launch', 'launch_ros', 'lifecycle_msgs',
                                'ament_index_python']
     files = _launch_files(system, nodes, banner)
+    diagram = f'doc/{system.package}.dot'
     files += [
         FileSpec(PARAMS_FILE, 'system/params.yaml.jinja',
                  {'banner': banner,
                   'nodes': _parameters(system, components)}),
-        FileSpec(f'doc/{system.package}.dot', 'system/diagram.dot.jinja',
+        FileSpec(diagram, 'system/diagram.dot.jinja',
                  {'banner': banner,
                   **_diagram(system, components, topics)}),
         FileSpec('CMakeLists.txt', 'system/CMakeLists.txt.jinja',
-                 {'banner': banner, 'package': system.package}),
+                 {'banner': banner, 'package': system.package,
+                  'diagram': diagram}),
         FileSpec('package.xml', 'common/package.xml.jinja', {
             'banner': banner,
             **package_xml_context(system.info, buildtool=['ament_cmake'],

@@ -3,6 +3,7 @@
 
 from pathlib import Path
 
+from colcon_core.event.output import StderrLine
 from colcon_core.logging import colcon_logger
 from colcon_core.plugin_system import satisfies_version
 from colcon_core.task import TaskExtensionPoint
@@ -37,6 +38,12 @@ class RobmosysBuildTask(TaskExtensionPoint):
             logger.error(
                 f"cannot generate '{pkg.name}': its model file has errors")
             return 1
+        # warnings go with the package's own output, like a compiler's: in
+        # its build log, on the console, in colcon's summary of packages
+        # with stderr output; they stop nothing
+        for diagnostic in result.warnings_of(pkg.name):
+            self.context.put_event_into_queue(
+                StderrLine(f'{diagnostic}\n'.encode()))
         source_dir = Path(args.build_base) / GENERATED_DIR
         try:
             plan = plan_package(result.workspace, pkg.name)

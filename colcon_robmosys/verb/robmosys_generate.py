@@ -49,6 +49,9 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
             print('No RobMoSys model selected', file=sys.stderr)
             return 0
         result = selected[0].metadata[METADATA_KEY]
+        for descriptor in sorted(selected, key=lambda d: d.name):
+            for diagnostic in result.warnings_of(descriptor.name):
+                print(diagnostic, file=sys.stderr)
         model_files = {d.metadata['robmosys_model_file'] for d in selected}
         errors = [e for e in result.errors
                   if e.location.path in model_files]

@@ -17,11 +17,20 @@ INSTALLED = {
 }
 
 
-def fake_ament_index(prefix: Path) -> InterfaceIndex:
-    """Lay out INSTALLED as an ament prefix under ``prefix`` and return its index."""
+#: The standard messages the example workspace uses besides INSTALLED (the
+#: dummy_robot example): not in INSTALLED, where the corpus has them missing.
+EXAMPLE_EXTRA = {
+    'sensor_msgs': ['msg/JointState.msg', 'msg/LaserScan.msg'],
+    'nav_msgs': ['msg/OccupancyGrid.msg'],
+}
+
+
+def fake_ament_index(prefix: Path, extra: dict[str, list[str]] | None = None
+                     ) -> InterfaceIndex:
+    """Lay out INSTALLED (and extra) as an ament prefix under ``prefix``; return its index."""
     markers = prefix / 'share' / 'ament_index' / 'resource_index' / 'packages'
     markers.mkdir(parents=True)
-    for package, files in INSTALLED.items():
+    for package, files in {**INSTALLED, **(extra or {})}.items():
         (markers / package).write_text('')
         for name in files:
             path = prefix / 'share' / package / name

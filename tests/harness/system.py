@@ -39,15 +39,18 @@ class NodeLaunch:
     def command(self, install_dir: Path) -> list[str]:
         """Return the command line launch_ros runs for this node."""
         executable = install_dir / self.package / 'lib' / self.package / self.executable
-        command = [str(executable), '--ros-args',
-                   '-r', f'__node:={self.name}']
+        return [str(executable), *self.ros_args()]
+
+    def ros_args(self) -> list[str]:
+        """Return the ``--ros-args`` part of the command line, as launch_ros builds it."""
+        args = ['--ros-args', '-r', f'__node:={self.name}']
         if self.namespace:
-            command += ['-r', f'__ns:={self.namespace}']
+            args += ['-r', f'__ns:={self.namespace}']
         for params_file in self.params_files:
-            command += ['--params-file', str(params_file)]
+            args += ['--params-file', str(params_file)]
         for source, target in self.remappings:
-            command += ['-r', f'{source}:={target}']
-        return command
+            args += ['-r', f'{source}:={target}']
+        return args
 
 
 def _literal(node: ast.AST, names: dict[str, Any]) -> Any:

@@ -1,0 +1,147 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""The dummy_robot example, built by colcon and brought up on real ROS 2.
+
+The nodes are started as the generated launch.py says (executables, names,
+namespaces, remappings, parameter file), activated through their lifecycle
+services in the order activate.py follows, and every connection of the system
+model is seen carrying data, with the values the parameter overrides set.
+"""
+
+from __future__ import annotations
+
+import ast
+import contextlib
+from pathlib import Path
+import sys
+
+import pytest
+
+from colcon_robmosys.model import find_model_files, load_workspace
+from colcon_robmosys.model.index import InterfaceIndex
+from colcon_robmosys.model.types import Component, Instance, System
+from conftest import requires_ros, TEST_WORKSPACE
+from harness.ros_env import background
+from harness.system import LifecycleDriver, read_launch_file, wait_until
+
+pytestmark = [pytest.mark.integration, requires_ros]
+
+SYSTEM = 'dummy_robot_bringup'
+
+
+def _model() -> tuple[System, dict[str, Component]]:
+    result = load_workspace(find_model_files([TEST_WORKSPACE / 'src']),
+                            InterfaceIndex([Path(sys.prefix)]))
+    result.raise_errors()
+    system = result.workspace.model(SYSTEM)
+    assert isinstance(system, System)
+    components = {}
+    for instance in system.instances:
+        component = result.workspace.model(instance.component)
+        assert isinstance(component, Component)
+        components[instance.name] = component
+    return system, components
+
+
+def effective_parameters(instance: Instance, component: Component) -> dict[str, object]:
+    """Return the values a node of the instance should run with."""
+    values = {p.name: p.default for p in component.parameters}
+    values.update(instance.parameters)
+    for parameter in component.parameters:
+        if parameter.type == 'double':
+            values[parameter.name] = float(values[parameter.name])
+        elif parameter.type.endswith('[]'):
+            values[parameter.name] = list(values[parameter.name])
+    return values
+
+
+def expected_report(component: Component, values: dict[str, object]) -> str:
+    """Return the line a monitor logs for what an instance publishes."""
+    if component.package == 'dummy_map_server':
+        width, height = values['width'], values['height']
+        occupied = 2 * width + 2 * (height - 2)
+        return (f"map in {values['frame_id']}: {width} x {height} cells of "
+                f"{values['resolution']:.2f} m, {occupied} occupied")
+    if component.package == 'dummy_laser':
+        return f"scan from {values['frame_id']}: {values['samples']} ranges"
+    assert component.package == 'dummy_joint_states', component.package
+    return f"joint states of {','.join(values['joint_names'])}"
+
+
+def activate_after(share: Path) -> dict[str, list[str]]:
+    """Return the ACTIVATE_AFTER table of the generated activate.py."""
+    tree = ast.parse((share / 'launch' / 'activate.py').read_text())
+    assignment = next(n for n in tree.body if isinstance(n, ast.Assign) and
+                      ast.unparse(n.targets[0]) == 'ACTIVATE_AFTER')
+    return ast.literal_eval(assignment.value)
+
+
+def test_dummy_robot_comes_up_in_order_and_every_connection_carries_data(
+        test_workspace_built, domain_id):
+    system, components = _model()
+    share = test_workspace_built.share(SYSTEM)
+    nodes = {n.name: n for n in read_launch_file(share / 'launch' / 'launch.py', share)}
+    assert set(nodes) == {i.name for i in system.instances}
+    order = activate_after(share)
+    # the map server comes first, the unmanaged spare laser not at all
+    assert order['map_server'] == [] and 'laser_spare' not in order
+    assert all('map_server' in after for name, after in order.items() if name != 'map_server')
+    env = test_workspace_built.env(domain_id)
+    install = test_workspace_built.install
+
+    with contextlib.ExitStack() as stack:
+        processes = {name: stack.enter_context(background(node.command(install), env=env))
+                     for name, node in nodes.items()}
+        driver = stack.enter_context(LifecycleDriver(domain_id))
+
+        def output(name: str) -> str:
+            return processes[name].output()
+
+        for name, node in nodes.items():
+            assert driver.state(node.fqn) == 'unconfigured', output(name)
+
+        # the parameter file of the system reached every node
+        for instance in system.instances:
+            if instance.parameters:
+                names = [n for n, _ in instance.parameters]
+                expected = effective_parameters(instance, components[instance.name])
+                assert driver.parameters(nodes[instance.name].fqn, names) == \
+                    {n: expected[n] for n in names}, instance.name
+
+        for name in order:
+            assert driver.transition(nodes[name].fqn, 'configure'), output(name)
+        # activate.py's order: each instance once those it comes after are active
+        active: list[str] = []
+        while len(active) < len(order):
+            ready = [n for n in order if n not in active and
+                     all(a in active for a in order[n])]
+            assert ready, f'activation order cycle in {order}'
+            for name in ready:
+                for before in order[name]:
+                    assert driver.state(nodes[before].fqn) == 'active'
+                assert driver.transition(nodes[name].fqn, 'activate'), output(name)
+                active.append(name)
+        assert driver.state(nodes['laser_spare'].fqn) == 'unconfigured'
+
+        # every connection of the model carries data, with the overridden values
+        wanted = {}
+        for connection in system.connections:
+            ends = (connection.source, connection.target)
+            provider, consumer = sorted(
+                (e.instance for e in ends),
+                key=lambda i: components[i].package == 'dummy_robot_monitor')
+            instance = system.instance(provider)
+            values = effective_parameters(instance, components[provider])
+            wanted[(provider, consumer)] = expected_report(components[provider], values)
+        assert len(wanted) == len(system.connections) == 8
+
+        def seen() -> set[tuple[str, str]]:
+            return {k for k, line in wanted.items() if line in output(k[1])}
+
+        assert wait_until(lambda: seen() == set(wanted), timeout=30), \
+            (set(wanted) - seen(), {n: output(n)[-2000:] for n in ('monitor', 'monitor_ops')})
+        # overrides in the data: a map of 40 x 30 at 0.25 m, 180 rear samples
+        assert 'map in world: 40 x 30 cells of 0.25 m, 136 occupied' in output('monitor')
+        assert 'scan from laser_rear: 180 ranges' in output('monitor_ops')
+        # the unmanaged laser published nothing: its default frame never shows
+        assert 'single_rrbot_hokuyo_laser' not in output('monitor') + output('monitor_ops')

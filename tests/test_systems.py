@@ -1,0 +1,282 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""The generated system packages, read and compared with their system models.
+
+Every system of test_workspace is generated (no build needed) and each launch,
+activate and parameter file is checked against what the model says, with the
+naming rules of docs/model-format.md written out again here, independently of
+the generator.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+import re
+import shutil
+import sys
+
+import pytest
+import yaml
+
+from colcon_robmosys.generate import generate_package
+from colcon_robmosys.model import find_model_files, load_workspace
+from colcon_robmosys.model.index import InterfaceIndex
+from colcon_robmosys.model.types import Component, Pattern, Role, System, Workspace
+from colcon_robmosys.ros2 import plan_package
+from conftest import colcon, requires_ros, TEST_WORKSPACE
+from harness.system import read_launch_file
+
+#: What the launch files pass besides the node's identity (launch_ros API).
+LAUNCH_EXTRA = {'output': 'screen'}
+
+
+def _load(src: Path) -> Workspace:
+    result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
+    result.raise_errors()
+    return result.workspace
+
+
+WORKSPACE = _load(TEST_WORKSPACE / 'src')
+SYSTEMS = sorted(m.package for m in WORKSPACE.models if isinstance(m, System))
+
+
+def _system(package: str) -> System:
+    system = WORKSPACE.model(package)
+    assert isinstance(system, System)
+    return system
+
+
+def _component(system: System, instance: str) -> Component:
+    found = system.instance(instance)
+    assert found is not None
+    component = WORKSPACE.model(found.component)
+    assert isinstance(component, Component)
+    return component
+
+
+def expected_remappings(system: System) -> dict[str, set[tuple[str, str]]]:
+    """Return instance -> (port, name) remappings, by the documented rules."""
+    remappings: dict[str, set[tuple[str, str]]] = {i.name: set() for i in system.instances}
+    for connection in system.connections:
+        ends = (connection.source, connection.target)
+        provided = next(e for e in ends
+                        if _component(system, e.instance).port(e.port).role is Role.PROVIDED)
+        namespace = system.instance(provided.instance).namespace.strip('/')
+        prefix = f'/{namespace}' if namespace else ''
+        if connection.topic is None:
+            name = f'{prefix}/{provided.instance}/{provided.port}'
+        elif connection.topic.startswith('/'):
+            name = connection.topic
+        else:
+            name = f'{prefix}/{connection.topic}'
+        for end in ends:
+            remappings[end.instance].add((end.port, name))
+    return remappings
+
+
+@pytest.fixture(scope='module')
+def generated(tmp_path_factory) -> Path:
+    """Return the generated packages of test_workspace, one folder each."""
+    out = tmp_path_factory.mktemp('generated')
+    for model in WORKSPACE.models:
+        generate_package(plan_package(WORKSPACE, model.package), out / model.package)
+    return out
+
+
+def test_every_example_system_is_checked():
+    assert SYSTEMS == ['dummy_robot_bringup', 'pubsub_system']
+
+
+def _launch_files(package: str) -> list[str]:
+    system = _system(package)
+    names = ['launch.py', 'activate.py']
+    for instance in system.instances:
+        names += [f'launch.{instance.name}.py', f'activate.{instance.name}.py']
+    return [f'{package}/{name}' for name in names]
+
+
+LAUNCH_FILES = [f for package in SYSTEMS for f in _launch_files(package)]
+
+
+def test_the_launch_folder_holds_exactly_these_files(generated):
+    for package in SYSTEMS:
+        found = {f'{package}/{p.name}' for p in (generated / package / 'launch').iterdir()}
+        assert found == set(_launch_files(package))
+
+
+@pytest.mark.parametrize('launch_file', LAUNCH_FILES)
+def test_launch_file_follows_the_system_model(generated, launch_file):
+    package, name = launch_file.split('/')
+    system = _system(package)
+    share = generated / package
+    nodes = read_launch_file(share / 'launch' / name, share)
+    instance = name.split('.')[1] if name.count('.') == 2 else None
+    wanted = [i for i in system.instances if instance in (None, i.name)]
+    assert sorted(n.name for n in nodes) == sorted(i.name for i in wanted)
+    remappings = expected_remappings(system)
+    for node in nodes:
+        model = system.instance(node.name)
+        component = _component(system, node.name)
+        assert node.package == model.component
+        assert node.executable == component.name
+        assert node.namespace == model.namespace
+        assert set(node.remappings) == remappings[node.name]
+        assert len(node.remappings) == len(remappings[node.name]), 'a port remapped twice'
+        assert node.params_files == (share / 'cfg' / 'params.yaml',)
+        assert node.extra == LAUNCH_EXTRA
+
+
+@pytest.mark.parametrize('launch_file', [f for f in LAUNCH_FILES if '/activate' in f])
+def test_activate_file_follows_the_activation_model(generated, launch_file):
+    """activate*.py manages the instances with activate: true, in their order."""
+    package, name = launch_file.split('/')
+    system = _system(package)
+    tree = ast.parse((generated / package / 'launch' / name).read_text())
+    assignment = next(n for n in tree.body if isinstance(n, ast.Assign) and
+                      ast.unparse(n.targets[0]) == 'ACTIVATE_AFTER')
+    activate_after = ast.literal_eval(assignment.value)
+    instance = name.split('.')[1] if name.count('.') == 2 else None
+    managed = [i for i in system.instances if i.activate and instance in (None, i.name)]
+    in_file = {i.name for i in managed}
+    # a file waits only for the instances it activates itself
+    assert activate_after == {i.name: [a for a in i.after if a in in_file] for i in managed}
+    # the nodes are created in an order that respects 'after'
+    nodes = [n.name for n in read_launch_file(generated / package / 'launch' / name,
+                                              generated / package)]
+    for i in managed:
+        assert all(nodes.index(a) < nodes.index(i.name) for a in activate_after[i.name])
+
+
+@pytest.mark.parametrize('package', SYSTEMS)
+def test_params_file_holds_the_overrides_by_node_name(generated, package):
+    system = _system(package)
+    params = yaml.safe_load((generated / package / 'cfg' / 'params.yaml').read_text())
+    expected = {}
+    for instance in system.instances:
+        if instance.parameters:
+            types = {p.name: p.type for p in _component(system, instance.name).parameters}
+            values = {n: float(v) if types[n] == 'double' else
+                      list(v) if isinstance(v, (list, tuple)) else v
+                      for n, v in instance.parameters}
+            expected[f'{instance.namespace}/{instance.name}'] = {'ros__parameters': values}
+    assert params == expected
+
+
+@pytest.mark.parametrize('package', SYSTEMS)
+def test_package_depends_on_every_component_it_launches(generated, package):
+    from catkin_pkg.package import parse_package
+    system = _system(package)
+    xml = parse_package(generated / package / 'package.xml')
+    exec_depends = {d.name for d in xml.exec_depends}
+    components = {i.component for i in system.instances}
+    assert components | {'launch', 'launch_ros', 'lifecycle_msgs', 'ament_index_python'} \
+        <= exec_depends
+    cmake = (generated / package / 'CMakeLists.txt').read_text()
+    assert 'install(DIRECTORY launch cfg doc' in cmake
+
+
+@pytest.mark.parametrize('package', SYSTEMS)
+def test_diagram_shows_instances_ports_and_typed_connections(generated, package):
+    system = _system(package)
+    dot = (generated / package / 'doc' / f'{package}.dot').read_text()
+    assert dot.count('{') == dot.count('}')
+    for instance in system.instances:
+        component = _component(system, instance.name)
+        line = next(x for x in dot.splitlines() if x.startswith(f'  "{instance.name}" ['))
+        assert f'{instance.namespace}/{instance.name}' in line
+        for port in component.ports:
+            assert f'<{port.name}> {port.name} ({port.role.value} {port.pattern.value})' in line
+        assert ('style=dashed' in line) is (not instance.activate)
+    edge = r'^  "(\w+)":(\w+) -> "(\w+)":(\w+) \[label="(\w+) ([\w/]+)\\n([\w/]+)"\];$'
+    edges = re.findall(edge, dot, re.MULTILINE)
+    assert len(edges) == len(system.connections)
+    remappings = expected_remappings(system)
+    for connection in system.connections:
+        ends = (connection.source, connection.target)
+        port = _component(system, ends[0].instance).port(ends[0].port)
+        by_role = {_component(system, e.instance).port(e.port).role: e for e in ends}
+        # arrows follow the data: to the server of send, query and action
+        if port.pattern in (Pattern.SEND, Pattern.QUERY, Pattern.ACTION):
+            source, target = by_role[Role.REQUIRED], by_role[Role.PROVIDED]
+        else:
+            source, target = by_role[Role.PROVIDED], by_role[Role.REQUIRED]
+        name = dict(remappings[source.instance])[source.port]
+        assert (source.instance, source.port, target.instance, target.port,
+                port.pattern.value, str(port.type), name) in edges
+
+
+def test_activate_file_names_what_a_failed_instance_holds_back(generated):
+    """A failed transition is reported with the instances that now wait in vain."""
+    source = (generated / 'dummy_robot_bringup' / 'launch' / 'activate.py').read_text()
+    tree = ast.parse(source)
+    # the table and the pure function only: launch itself is not installed here
+    keep = [n for n in tree.body if (isinstance(n, ast.Assign) and
+                                     ast.unparse(n.targets[0]) == 'ACTIVATE_AFTER') or
+            (isinstance(n, ast.FunctionDef) and n.name == '_waiting_for')]
+    namespace: dict = {}
+    exec(compile(ast.Module(body=keep, type_ignores=[]), 'activate.py', 'exec'), namespace)
+    waiting_for = namespace['_waiting_for']
+    assert waiting_for('map_server') == ['joints', 'laser_front', 'laser_rear', 'monitor',
+                                         'monitor_ops']
+    assert waiting_for('joints') == ['monitor']
+    assert waiting_for('monitor') == []
+
+
+# warnings -------------------------------------------------------------------
+
+@pytest.fixture
+def unwired(tmp_path) -> Path:
+    """Return test_workspace with the dummy robot's ops monitor lacking its map."""
+    shutil.copytree(TEST_WORKSPACE / 'src', tmp_path / 'src',
+                    ignore=shutil.ignore_patterns('__pycache__'))
+    model = tmp_path / 'src' / 'dummy_robot_bringup' / 'robmosys.yaml'
+    text = model.read_text()
+    assert '      - {from: map_server.map, to: monitor_ops.map}\n' in text
+    model.write_text(text.replace('      - {from: map_server.map, to: monitor_ops.map}\n', ''))
+    return tmp_path
+
+
+def _warning_line(workspace: Path) -> str:
+    model = workspace / 'src' / 'dummy_robot_bringup' / 'robmosys.yaml'
+    line = model.read_text().splitlines().index('      monitor_ops:') + 1
+    return f"{model}:{line}:7: warning: required port 'monitor_ops.map' is not connected"
+
+
+def test_unconnected_required_port_is_a_warning_only(unwired):
+    result = load_workspace(find_model_files([unwired / 'src']),
+                            InterfaceIndex([Path(sys.prefix)]))
+    assert result.errors == []
+    assert [str(d) for d in result.diagnostics] == [_warning_line(unwired)]
+    assert [str(d) for d in result.warnings_of('dummy_robot_bringup')] == \
+        [_warning_line(unwired)]
+    # an unconnected provided port (laser_spare.scan) is no warning; the
+    # system is generated, the port left under its own name
+    plan = plan_package(result.workspace, 'dummy_robot_bringup')
+    nodes = {n['instance']: n for n in plan.summary['nodes']}
+    assert nodes['laser_spare']['remappings'] == []
+    assert ('map', '/dummy_robot/map_server/map') not in nodes['monitor_ops']['remappings']
+
+
+@requires_ros
+def test_warnings_are_told_by_the_verb_and_the_build_without_failing(
+        unwired, test_workspace_built):
+    result = colcon(['robmosys-generate', '--validate-only'], cwd=unwired)
+    assert result.returncode == 0, result.stderr
+    assert result.stderr.splitlines().count(_warning_line(unwired)) == 1
+    # the components it launches, built once for the session
+    for package in {i.component for i in _system('dummy_robot_bringup').instances}:
+        shutil.copytree(test_workspace_built.install / package, unwired / 'install' / package,
+                        symlinks=True)
+    # like a compiler's warning: in the package's stderr, the build goes on
+    result = colcon(['build', '--packages-select', 'dummy_robot_bringup',
+                     '--event-handlers', 'console_cohesion+'], cwd=unwired, timeout=300)
+    output = result.stdout + result.stderr
+    assert result.returncode == 0, output
+    assert f'--- stderr: dummy_robot_bringup\n{_warning_line(unwired)}\n---\n' in output
+    assert '1 package had stderr output: dummy_robot_bringup' in output
+    share = unwired / 'install' / 'dummy_robot_bringup' / 'share' / 'dummy_robot_bringup'
+    assert (share / 'launch' / 'activate.py').is_file()
+    assert (share / 'doc' / 'dummy_robot_bringup.dot').is_file()
+    assert (share / 'doc' / 'dummy_robot_bringup.svg').is_file() is \
+        (shutil.which('dot') is not None)
