@@ -29,8 +29,13 @@ from colcon_robmosys.ros2 import plan_package
 from conftest import TEST_WORKSPACE
 
 #: Generates every model of argv[1] into argv[2]/<package>; says 'go' once
-#: imported and planned, so that the kill falls into the writing.
+#: imported and planned, so that the kill falls into the writing. With a
+#: number argv[3], the child SIGKILLs itself at that file operation (creating,
+#: renaming or removing a file: Python's audit events), a moment that a
+#: machine's load cannot shift.
 CHILD = """
+import os
+import signal
 import sys
 from pathlib import Path
 from colcon_robmosys.generate import generate_package
@@ -42,10 +47,20 @@ src, out = Path(sys.argv[1]), Path(sys.argv[2])
 result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
 result.raise_errors()
 plans = [plan_package(result.workspace, m.package) for m in result.workspace.models]
+events = []
+
+def hook(event, args):
+    if event in ('open', 'os.rename', 'os.remove', 'os.link') and len(sys.argv) > 3:
+        if event != 'open' or str(args[0]).startswith(str(out)):
+            events.append(event)
+            if len(events) == int(sys.argv[3]):
+                os.kill(os.getpid(), signal.SIGKILL)
+
+sys.addaudithook(hook)
 print('go', flush=True)
 for plan in plans:
     generate_package(plan, out / plan.name)
-print('done', flush=True)
+print('events', len(events), flush=True)
 """
 
 ITERATIONS = 8
@@ -62,10 +77,16 @@ def _version(src: Path, text: str) -> None:
         model.write_text(''.join(lines))
 
 
-def _generate(src: Path, out: Path, *, kill_after: float | None = None) -> float:
-    """Run the child; kill it kill_after seconds after 'go'; return the time it wrote."""
-    child = subprocess.Popen([sys.executable, '-c', CHILD, str(src), str(out)],
-                             stdout=subprocess.PIPE, text=True)
+def _generate(src: Path, out: Path, *, kill_after: float | None = None,
+              kill_at: int | None = None) -> tuple[float, str]:
+    """Run the child; kill it kill_after seconds after 'go' or at its kill_at-th file operation.
+
+    :returns: how long the child ran after 'go', and what it printed then
+    """
+    command = [sys.executable, '-c', CHILD, str(src), str(out)]
+    if kill_at is not None:
+        command.append(str(kill_at))
+    child = subprocess.Popen(command, stdout=subprocess.PIPE, text=True)
     try:
         assert child.stdout is not None
         assert child.stdout.readline() == 'go\n'
@@ -73,8 +94,11 @@ def _generate(src: Path, out: Path, *, kill_after: float | None = None) -> float
         if kill_after is not None:
             time.sleep(kill_after)
             child.send_signal(signal.SIGKILL)
+        rest = child.stdout.read()
         child.wait(timeout=120)
-        return time.monotonic() - start
+        if kill_after is None and kill_at is None:
+            assert child.returncode == 0
+        return time.monotonic() - start, rest
     finally:
         if child.poll() is None:
             child.kill()
@@ -112,7 +136,9 @@ def test_killed_generation_leaves_whole_files(tmp_path):
     _generate(src, tmp_path / 'old')
     old = _files(tmp_path / 'old')
     _version(src, 'New words, longer.')
-    duration = _generate(src, tmp_path / 'new')
+    shutil.copytree(tmp_path / 'old', tmp_path / 'new')
+    duration, printed = _generate(src, tmp_path / 'new', kill_at=10 ** 9)
+    events = int(printed.split()[1])
     new = _files(tmp_path / 'new')
     assert old.keys() == new.keys()
     changed = {name for name in old if old[name] != new[name]}
@@ -123,8 +149,12 @@ def test_killed_generation_leaves_whole_files(tmp_path):
     for iteration in range(ITERATIONS):
         out = tmp_path / f'run{iteration}'
         shutil.copytree(tmp_path / 'old', out)
-        # spread the kills over the whole run, and a little beyond
-        _generate(src, out, kill_after=rng.uniform(0, duration * 1.2))
+        if iteration % 2:
+            # spread the kills over the whole run, and a little beyond
+            _generate(src, out, kill_after=rng.uniform(0, duration * 1.2))
+        else:
+            # or at one of its file operations
+            _generate(src, out, kill_at=rng.randint(1, events))
         seen = set()
         for path in sorted(out.rglob('*')):
             if not path.is_file():
@@ -148,7 +178,7 @@ def test_killed_generation_leaves_whole_files(tmp_path):
     assert {k: v for k, v in _files(src).items() if not k.endswith('robmosys.yaml')} == \
         {k: v for k, v in users.items() if not k.endswith('robmosys.yaml')}
     # else the kills fell outside the writing and tested nothing
-    print(f'{mixed} of {ITERATIONS} kills fell amid the writing of {duration:.3f} s')
+    print(f'{mixed} of {ITERATIONS} kills fell amid {events} file operations in {duration:.3f} s')
     assert mixed >= 2, f'only {mixed} of {ITERATIONS} kills fell amid the writing'
 
 

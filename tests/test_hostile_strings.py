@@ -21,7 +21,8 @@ import xml.etree.ElementTree as ET
 import pytest
 import yaml
 
-from colcon_robmosys.generate import create_missing_user_files, generate_package
+from colcon_robmosys.generate import (
+    create_missing_user_files, generate_package, MANIFEST, read_manifest)
 from colcon_robmosys.generate.filters import cmake_str, cpp_str, yaml_value
 from colcon_robmosys.model import find_model_files, load_workspace
 from colcon_robmosys.model.index import InterfaceIndex
@@ -199,8 +200,10 @@ def test_hostile_text_is_only_data(tmp_path, plain, text):
             assert spec.fields[0].default_value == value
             assert spec.constants[0].value == value
             seen.add('msg')
+        elif path.name == MANIFEST:
+            assert read_manifest(path).keys() == read_manifest(plain_files[name]).keys()
         else:
-            # CMakeLists.txt, diagrams, the manifest: no free text goes there
+            # CMakeLists.txt, diagrams: no free text goes there
             # (a generator that starts writing some must check it parses here)
             assert data == plain_data, f'{name}: model text reached a file not checked here'
     assert seen == {'python', 'docstring', 'xml', 'yaml', 'msg'}

@@ -109,13 +109,13 @@ def generate_package(plan: PackagePlan, out_dir: Path) -> GenerationReport:
         report.removed += remove_leftovers(out_dir)
     manifest_path = out_dir / MANIFEST
     previous = read_manifest(manifest_path)
-    final = {relative: {_digest(data)}
-             for relative, (data, _) in outputs.items()}
+    final: Manifest = {relative: {_digest(data)}
+                       for relative, (data, _) in outputs.items()}
     # a run killed half-way must leave every file it wrote known as ours:
     # first record the old and the new content of each file, then write
-    pending = {relative: (previous.get(relative) or set()) | digests
-               for relative, digests in final.items()}
-    pending.update((r, d) for r, d in previous.items() if r not in final)
+    pending: Manifest = dict(previous)
+    for relative, digests in final.items():
+        pending[relative] = (previous.get(relative) or set()) | (digests or set())
     if pending != previous:
         _write_manifest(manifest_path, pending)
     for relative, (data, executable) in sorted(outputs.items()):
@@ -139,7 +139,7 @@ def generate_package(plan: PackagePlan, out_dir: Path) -> GenerationReport:
 
 #: The files of a generation -> the digests of the contents it may have
 #: written there; None for a manifest written before digests were recorded.
-Manifest = dict[str, 'set[str] | None']
+Manifest = dict[str, set[str] | None]
 
 
 def read_manifest(path: Path) -> Manifest:
@@ -154,7 +154,7 @@ def read_manifest(path: Path) -> Manifest:
             continue
         digest, sep, relative = line.partition('  ')
         if sep and len(digest) == 64:
-            files.setdefault(relative, set()).add(digest)  # type: ignore
+            files[relative] = (files.get(relative) or set()) | {digest}
         else:
             files[line] = None
     return files
