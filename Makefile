@@ -3,6 +3,8 @@
 #   make test   run the test suite (PYTEST_ARGS='-k foo' to narrow it)
 #   make demo   run tools/demo.py
 #   make clean  remove the venv and the test workspace's build results
+#   make bench  run the three benchmarks of bench/ (or one: make bench-generation,
+#               bench-colcon, bench-runtime; BENCH_ARGS='--help' shows their options)
 
 PYTHON ?= python3
 PYTEST_ARGS ?=
@@ -19,7 +21,7 @@ ifeq ($(CI),true)
 PYTEST_FLAGS := -p no:cacheprovider
 endif
 
-.PHONY: venv demo test clean
+.PHONY: venv demo test clean bench bench-generation bench-colcon bench-runtime
 
 venv: $(VENV)/.stamp-package
 
@@ -54,6 +56,14 @@ demo: venv
 # sys.path, and the source tree would shadow the installed package.
 test: venv
 	$(VENV)/bin/pytest tests -ra $(PYTEST_FLAGS) $(PYTEST_ARGS)
+
+# Each benchmark prints ratios measured in one run; docs/performance.md keeps the
+# latest figures. bench/ is run as scripts, so the installed package is the one measured.
+BENCH_ARGS ?=
+bench-generation bench-colcon bench-runtime: bench-%: venv
+	$(VPY) bench/bench_$*.py $(BENCH_ARGS)
+
+bench: bench-generation bench-colcon bench-runtime
 
 clean:
 	rm -rf $(VENV) $(SETUPTOOLS_LEFTOVERS) test_workspace/build test_workspace/install \

@@ -21,7 +21,7 @@ def test_flake8():
     pytest.importorskip('flake8', reason='flake8 is installed by `make test`')
     result = subprocess.run(
         [sys.executable, '-m', 'flake8', '--config', str(REPO / 'setup.cfg'),
-         'colcon_robmosys', 'tests', 'tools'],
+         'colcon_robmosys', 'tests', 'tools', 'bench'],
         cwd=REPO, capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stdout + result.stderr
 

@@ -33,12 +33,19 @@ def test_colcon_list_shows_one_package_per_model(workspace):
     assert result.returncode == 0, result.stderr
     rows = sorted(tuple(line.split('\t')[::2]) for line in result.stdout.splitlines())
     assert rows == [
+        ('cpp_client', '(robmosys.component)'),
+        ('cpp_publisher', '(robmosys.component)'),
+        ('cpp_receiver', '(robmosys.component)'),
+        ('cpp_sender', '(robmosys.component)'),
+        ('cpp_server', '(robmosys.component)'),
+        ('cpp_subscriber', '(robmosys.component)'),
         ('dummy_joint_states', '(robmosys.component)'),
         ('dummy_laser', '(robmosys.component)'),
         ('dummy_map_server', '(robmosys.component)'),
         ('dummy_robot_bringup', '(robmosys.system)'),
         ('dummy_robot_monitor', '(robmosys.component)'),
         ('map_tools', '(ros.ament_cmake)'),
+        ('mixed_system', '(robmosys.system)'),
         ('publisher', '(robmosys.component)'),
         ('pubsub_system', '(robmosys.system)'),
         ('simple_msgs', '(robmosys.interfaces)'),
@@ -101,8 +108,10 @@ def test_generate_creates_missing_implementation_only(workspace):
     # marked as colcon marks build/: not found as packages next time
     assert (workspace / 'gen' / 'COLCON_IGNORE').is_file()
     assert sorted(p.name for p in (workspace / 'gen').iterdir() if p.is_dir()) == [
-        'dummy_joint_states', 'dummy_laser', 'dummy_map_server', 'dummy_robot_bringup',
-        'dummy_robot_monitor', 'publisher', 'pubsub_system', 'simple_msgs', 'subscriber']
+        'cpp_client', 'cpp_publisher', 'cpp_receiver', 'cpp_sender', 'cpp_server',
+        'cpp_subscriber', 'dummy_joint_states', 'dummy_laser', 'dummy_map_server',
+        'dummy_robot_bringup', 'dummy_robot_monitor', 'mixed_system', 'publisher',
+        'pubsub_system', 'simple_msgs', 'subscriber']
 
 
 def test_generate_honours_package_selection(workspace):

@@ -378,8 +378,10 @@ def test_example_workspace(tmp_path):
     assert result.diagnostics == []
     workspace = result.workspace
     assert sorted(m.package for m in workspace.models) == [
-        'dummy_joint_states', 'dummy_laser', 'dummy_map_server', 'dummy_robot_bringup',
-        'dummy_robot_monitor', 'publisher', 'pubsub_system', 'simple_msgs', 'subscriber']
+        'cpp_client', 'cpp_publisher', 'cpp_receiver', 'cpp_sender', 'cpp_server',
+        'cpp_subscriber', 'dummy_joint_states', 'dummy_laser', 'dummy_map_server',
+        'dummy_robot_bringup', 'dummy_robot_monitor', 'mixed_system', 'publisher',
+        'pubsub_system', 'simple_msgs', 'subscriber']
 
     msgs = _model(workspace, 'simple_msgs', ServiceDefinition)
     ogm, map_ = msgs.communication_objects

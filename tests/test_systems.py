@@ -85,7 +85,7 @@ def generated(tmp_path_factory) -> Path:
 
 
 def test_every_example_system_is_checked():
-    assert SYSTEMS == ['dummy_robot_bringup', 'pubsub_system']
+    assert SYSTEMS == ['dummy_robot_bringup', 'mixed_system', 'pubsub_system']
 
 
 def _launch_files(package: str) -> list[str]:

@@ -9,6 +9,7 @@ import ast
 from dataclasses import dataclass, field
 import hashlib
 from pathlib import Path
+import re
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
 from colcon_robmosys.generate.render import render
@@ -38,6 +39,8 @@ def user_file_problems(user_file: UserFile, path: Path) -> list[Diagnostic]:
     except (OSError, UnicodeDecodeError) as exc:
         return [Diagnostic(Location(str(path)),
                            f'cannot read the implementation file: {exc}')]
+    if path.suffix in ('.hpp', '.h'):
+        return _cpp_header_problems(user_file, path, text)
     if not path.suffix == '.py':
         return []
     try:
@@ -61,6 +64,40 @@ def user_file_problems(user_file: UserFile, path: Path) -> list[Diagnostic]:
                        f"class '{cls.name}' lacks the function '{name}' of "
                        f'the model; {skeleton}')
             for name in user_file.required_functions if name not in defined]
+
+
+def _cpp_header_problems(user_file: UserFile, path: Path,
+                         text: str) -> list[Diagnostic]:
+    """Check that a C++ header declares the class and functions of the model.
+
+    A compiler would say so too, but only in the middle of the build and in
+    terms of pure virtual functions; this names the function of the model.
+    Comments, strings and preprocessor lines are blanked out (keeping line
+    and column) so that only declarations count.
+    """
+    code = _CPP_NOISE.sub(lambda m: re.sub(r'[^\n]', ' ', m.group(0)), text)
+    skeleton = f'the skeleton {user_file.skeleton_path} of the package shows ' \
+        'what the model asks for'
+    cls = re.search(rf'\b(?:class|struct)\s+{re.escape(user_file.required_class)}\b'
+                    r'[^;{]*\{', code)
+    if cls is None:
+        return [Diagnostic(Location(str(path), 1, 1),
+                           f"no class '{user_file.required_class}' in the "
+                           f'implementation file; {skeleton}')]
+    line = code.count('\n', 0, cls.start()) + 1
+    column = cls.start() - code.rfind('\n', 0, cls.start())
+    body = code[cls.end():]
+    return [Diagnostic(Location(str(path), line, column),
+                       f"class '{user_file.required_class}' lacks the function "
+                       f"'{name}' of the model; {skeleton}")
+            for name in user_file.required_functions
+            if not re.search(rf'\b{re.escape(name)}\s*\(', body)]
+
+
+#: C++ comments, string and character literals, and preprocessor lines.
+_CPP_NOISE = re.compile(
+    r'//[^\n]*|/\*.*?\*/|"(?:\\.|[^"\\\n])*"|\'(?:\\.|[^\'\\\n])*\'|^[ \t]*#[^\n]*',
+    re.DOTALL | re.MULTILINE)
 
 
 def create_missing_user_files(plan: PackagePlan) -> list[Path]:

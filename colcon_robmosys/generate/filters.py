@@ -96,33 +96,43 @@ def yaml_value(value: Any) -> str:
     return json.dumps(value)
 
 
-_CPP_SIMPLE_ESCAPES = {
-    '"': '\\"', '\\': '\\\\', '\n': '\\n', '\t': '\\t', '\r': '\\r',
-    # '??' could start a trigraph where a compiler still reads them
-    '?': '\\?',
-}
+_CPP_ESCAPES = {'\\': '\\\\', '"': '\\"', '\n': '\\n', '\t': '\\t',
+                '\r': '\\r', '?': '\\?'}
 
 
 def cpp_str(text: Any) -> str:
-    """Write a C++ string literal of the text, in plain ASCII.
+    r"""Write a C++ string literal, in plain ASCII.
 
-    Other characters become octal escapes (at most three digits, so that a
-    following digit is not read into them) or universal character names.
+    Other bytes of the UTF-8 text become three-digit octal escapes, which
+    (unlike ``\x``) cannot swallow the character that follows; ``?`` is
+    escaped so that no trigraph forms.
     """
     out = []
     for char in str(text):
-        code = ord(char)
-        if char in _CPP_SIMPLE_ESCAPES:
-            out.append(_CPP_SIMPLE_ESCAPES[char])
-        elif code < 0x20 or code == 0x7f:
-            out.append(f'\\{code:03o}')
-        elif code < 0x80:
+        if char in _CPP_ESCAPES:
+            out.append(_CPP_ESCAPES[char])
+        elif ' ' <= char <= '~':
             out.append(char)
-        elif code < 0x10000:
-            out.append(f'\\u{code:04x}')
         else:
-            out.append(f'\\U{code:08x}')
+            out.extend(f'\\{byte:03o}' for byte in char.encode('utf-8'))
     return '"' + ''.join(out) + '"'
+
+
+def cpp_comment(text: Any, prefix: str = '//') -> str:
+    """Turn text into C++ line comments (``//``, or ``///`` for Doxygen).
+
+    A comment line ending in a backslash would continue onto the next line
+    of code, so such a line gets a closing period.
+    """
+    lines = str(text).strip().splitlines() or ['']
+    out = []
+    for line in lines:
+        line = f'{prefix} {line}'.rstrip()
+        # ('??/' is a backslash where a compiler still reads trigraphs)
+        if line.endswith(('\\', '??/')):
+            line += '.'
+        out.append(line)
+    return '\n'.join(out)
 
 
 _CMAKE_ESCAPES = {'\\': '\\\\', '"': '\\"', '$': '\\$', '\n': '\\n',
@@ -154,6 +164,7 @@ FILTERS: dict[str, Callable[..., str]] = {
     'py_docstring': py_docstring,
     'yaml_value': yaml_value,
     'cpp_str': cpp_str,
+    'cpp_comment': cpp_comment,
     'cmake_str': cmake_str,
     'dot_str': dot_str,
 }

@@ -396,12 +396,23 @@ class Workspace:
     """Every model of a workspace, validated together."""
 
     files: tuple[ModelFile, ...] = field(default=())
+    #: every model of every file, in file order
+    models: tuple[Model, ...] = field(init=False, repr=False, compare=False)
+    # package -> its model; built once, as colcon plans and builds the
+    # packages one by one: a scan per lookup made that quadratic
+    _by_package: dict[str, Model] = field(
+        init=False, repr=False, compare=False)
 
-    @property
-    def models(self) -> tuple[Model, ...]:
-        """Return every model of every file."""
-        return tuple(m for f in self.files for m in f.models)
+    def __post_init__(self) -> None:
+        models = tuple(m for f in self.files for m in f.models)
+        by_package: dict[str, Model] = {}
+        for model in models:
+            # a package claimed twice is an error of the workspace; until
+            # it is fixed, the first model keeps it
+            by_package.setdefault(model.package, model)
+        object.__setattr__(self, 'models', models)
+        object.__setattr__(self, '_by_package', by_package)
 
     def model(self, package: str) -> Model | None:
         """Return the model that generates the named package, if any."""
-        return next((m for m in self.models if m.package == package), None)
+        return self._by_package.get(package)

@@ -437,7 +437,8 @@ class _WorkspaceChecker:
     # cycles -------------------------------------------------------------
 
     def _check_cycles(self) -> None:
-        graph = {name: set(model_dependencies(model)) & set(self.models)
+        graph = {name: {d for d in model_dependencies(model)
+                        if d in self.models}
                  for name, model in self.models.items()}
         for cycle in _cycles(graph):
             model = self.models[cycle[0]]

@@ -12,9 +12,11 @@ from colcon_core.plugin_system import satisfies_version
 from colcon_robmosys.model import load_workspace
 from colcon_robmosys.model import model_dependencies
 from colcon_robmosys.model.types import Component
+from colcon_robmosys.model.types import Language
 from colcon_robmosys.model.types import ServiceDefinition
 from colcon_robmosys.package_identification.robmosys import \
     RobmosysPackageIdentification
+from colcon_robmosys.ros2.cpp import CPP_CLIENT_PACKAGES
 
 logger = colcon_logger.getChild(__name__)
 
@@ -64,9 +66,14 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
         for model in result.workspace.models:
             kind = 'interfaces' if isinstance(model, ServiceDefinition) else \
                 'component' if isinstance(model, Component) else 'system'
+            dependencies = model_dependencies(model)
+            if isinstance(model, Component) and \
+                    model.language is Language.CPP:
+                # built before, if the workspace builds rclcpp itself
+                dependencies += CPP_CLIENT_PACKAGES
             descriptors.add(_descriptor(
                 model.info.model_file, model.package, kind,
-                model_dependencies(model), result))
+                dependencies, result))
         for model_file, declared in sorted(result.broken_files.items()):
             # the build of these packages reports the errors and fails;
             # a file too broken to name any is named after its folder

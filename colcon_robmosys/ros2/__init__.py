@@ -8,6 +8,7 @@ from __future__ import annotations
 from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.model.types import (
     Component, Language, ServiceDefinition, Workspace)
+from colcon_robmosys.ros2.cpp import plan_cpp_component
 from colcon_robmosys.ros2.interfaces import plan_interfaces
 from colcon_robmosys.ros2.plan import FileSpec, PackagePlan, UserFile
 from colcon_robmosys.ros2.python import plan_python_component
@@ -30,7 +31,5 @@ def plan_package(workspace: Workspace, package: str) -> PackagePlan:
     if isinstance(model, Component):
         if model.language is Language.PYTHON:
             return plan_python_component(model)
-        raise RobmosysError.at(
-            model.location, f"component '{model.name}': the C++ generator "
-            'does not exist yet; use language: python')
+        return plan_cpp_component(model)
     return plan_system(model, workspace)

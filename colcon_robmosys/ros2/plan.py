@@ -55,6 +55,9 @@ class PackagePlan:
     exec_depends: tuple[str, ...]
     files: tuple[FileSpec, ...]
     user_files: tuple[UserFile, ...] = ()
+    #: packages the build needs from the ROS 2 prefix, not from the
+    #: workspace (rclcpp for C++): without them the build is skipped
+    prefix_requirements: tuple[str, ...] = ()
     #: human-readable facts for logs, e.g. the executables
     summary: Mapping[str, Any] = field(default_factory=dict)
 

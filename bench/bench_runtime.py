@@ -1,0 +1,308 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""Benchmark 3: message rate and latency of generated nodes vs hand-written rclpy ones.
+
+Compares a generated Python publisher/subscriber pair (two component models,
+built with colcon in a temporary workspace) with the hand-written rclpy lifecycle
+pair of ``handwritten_pubsub.py``: same message type (std_msgs/msg/Header, the
+stamp carries the send time), QoS (keep_last 10, reliable, volatile), timer period
+(10 ms), callback groups and executor (MultiThreadedExecutor), and the same code in
+the timer and the subscription. Both pairs run as real processes on loopback DDS,
+each in a ROS domain of its own, configured and activated through their lifecycle
+services, in alternation. Two loads:
+
+- latency: one message per period (100 Hz); latency = receive time - stamp;
+- throughput: ``--burst`` messages per period; rates of sending and of receiving.
+
+Prints generated / hand-written ratios for each figure. C++ is compared where
+rclcpp exists; here it is skipped with the reason.
+
+    make bench-runtime                     # or: .venv/bin/python bench/bench_runtime.py
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+from dataclasses import dataclass
+import json
+from pathlib import Path
+import statistics
+import sys
+import tempfile
+import time
+from typing import Any, Sequence
+
+import yaml
+
+# benchlib first: it puts the harness of the tests on the path
+from benchlib import print_end, print_machine, ratio, REPO, table
+from colcon_robmosys.errors import RobmosysError
+from colcon_robmosys.model import load_workspace
+from colcon_robmosys.ros2 import plan_package
+from harness import ros_env
+from harness.system import LifecycleDriver, wait_until
+
+HANDWRITTEN = REPO / 'bench' / 'handwritten_pubsub.py'
+TOPIC = '/bench_samples'
+QOS = {'depth': 10, 'reliability': 'reliable', 'durability': 'volatile'}
+METADATA = {'license': 'Apache-2.0',
+            'maintainers': [{'name': 'Benchmark Team', 'email': 'bench@example.com'}]}
+
+# The code of handwritten_pubsub.py's timer and subscription, as model functions.
+TALKER = {
+    'name': 'Talker', 'package': 'bench_talker', 'language': 'python',
+    'ports': {'pSample': {'pattern': 'push', 'role': 'provided',
+                          'type': 'std_msgs/msg/Header', 'qos': QOS}},
+    'activities': {'Publish': {'period': 0.01, 'functions': ['fPublish']}},
+    'functions': {
+        'fSetUp': {'code': 'import time\n'
+                           'self.now_ns = time.time_ns\n'
+                           'self.burst = self.params.burst\n'
+                           "self.frame = 'x' * self.params.payload\n"
+                           'self.sent = 0\n'
+                           'self.first = self.last = 0\n'},
+        'fPublish': {'code': 'for _ in range(self.burst):\n'
+                             '    now = self.now_ns()\n'
+                             '    message = Header(frame_id=self.frame)\n'
+                             '    message.stamp.sec, message.stamp.nanosec = '
+                             'divmod(now, 1_000_000_000)\n'
+                             '    self.pSample.publish(message)\n'
+                             'self.sent += self.burst\n'
+                             'self.first = self.first or now\n'
+                             'self.last = now\n'},
+        'fReport': {'code': 'import json\n'
+                            "print('BENCH talker ' + json.dumps({'sent': self.sent, "
+                            "'first': self.first, 'last': self.last}), flush=True)\n"},
+    },
+    'lifecycle': {'on_configure': ['fSetUp'], 'on_deactivate': ['fReport']},
+    'parameters': {'burst': {'type': 'int', 'default': 1},
+                   'payload': {'type': 'int', 'default': 0}},
+}
+LISTENER = {
+    'name': 'Listener', 'package': 'bench_listener', 'language': 'python',
+    'ports': {'rSample': {'pattern': 'push', 'role': 'required',
+                          'type': 'std_msgs/msg/Header', 'qos': QOS}},
+    'activities': {'Receive': {'trigger': 'rSample', 'functions': ['fReceive']}},
+    'functions': {
+        'fSetUp': {'code': 'import time\n'
+                           'self.now_ns = time.time_ns\n'
+                           'self.warmup_ns = int(self.params.warmup * 1e9)\n'
+                           'self.latencies = []\n'
+                           'self.first = self.start = self.last = 0\n'},
+        'fReceive': {'code': 'now = self.now_ns()\n'
+                             'self.first = self.first or now\n'
+                             'if now - self.first < self.warmup_ns:\n'
+                             '    return\n'
+                             'self.start = self.start or now\n'
+                             'self.latencies.append(now - commobj.stamp.sec * 1_000_000_000 '
+                             '- commobj.stamp.nanosec)\n'
+                             'self.last = now\n'},
+        'fReport': {'code': 'import json\n'
+                            "print('BENCH listener ' + json.dumps({'start': self.start, "
+                            "'last': self.last, 'latencies': self.latencies}), flush=True)\n"},
+    },
+    'lifecycle': {'on_configure': ['fSetUp'], 'on_deactivate': ['fReport']},
+    'parameters': {'warmup': {'type': 'double', 'default': 0.5}},
+}
+
+
+@dataclass(frozen=True)
+class Run:
+    """What one run of a pair measured."""
+
+    sent_rate: float
+    received_rate: float
+    received: int
+    latency_us: dict[str, float]
+
+
+def write_models(src: Path) -> None:
+    """Write the models of the generated pair into a workspace's src folder."""
+    for model in (TALKER, LISTENER):
+        path = src / str(model['package']) / 'robmosys.yaml'
+        path.parent.mkdir(parents=True)
+        path.write_text(yaml.safe_dump(
+            {'robmosys': 1, 'defaults': METADATA, 'components': [model]}, sort_keys=False),
+            encoding='utf-8')
+
+
+def build(root: Path) -> Path:
+    """Build the generated pair with colcon; return the install folder."""
+    env = ros_env.loopback_env(ros_env.free_domain_id())
+    result = ros_env.run([str(Path(sys.prefix) / 'bin' / 'colcon'), 'build'],
+                         env=env, cwd=root, timeout=900)
+    if result.returncode:
+        raise RuntimeError(f'colcon build failed:\n{result.stdout}{result.stderr}')
+    return root / 'install'
+
+
+def commands(kind: str, install: Path, burst: int, warmup: float) -> dict[str, list[str]]:
+    """Return the command lines of the talker and the listener of one kind of pair."""
+    if kind == 'generated':
+        talker = [str(install / 'bench_talker' / 'lib' / 'bench_talker' / 'Talker')]
+        listener = [str(install / 'bench_listener' / 'lib' / 'bench_listener' / 'Listener')]
+    else:
+        talker = [sys.executable, str(HANDWRITTEN), 'talker']
+        listener = [sys.executable, str(HANDWRITTEN), 'listener']
+    return {
+        'talker': talker + ['--ros-args', '-r', '__node:=talker', '-p', f'burst:={burst}',
+                            '-r', f'pSample:={TOPIC}'],
+        'listener': listener + ['--ros-args', '-r', '__node:=listener',
+                                '-p', f'warmup:={warmup}', '-r', f'rSample:={TOPIC}'],
+    }
+
+
+def _report(output: str, role: str) -> dict[str, Any] | None:
+    marker = f'BENCH {role} '
+    for line in output.splitlines():
+        if line.startswith(marker):
+            return json.loads(line[len(marker):])
+    return None
+
+
+def run_pair(cmds: dict[str, list[str]], base_env: dict[str, str], burst: int,
+             seconds: float, warmup: float) -> Run:
+    """Run one pair: configure, activate, let it work, deactivate, read its reports."""
+    domain_id = ros_env.free_domain_id()
+    env = ros_env.loopback_env(domain_id, base_env)
+    with contextlib.ExitStack() as stack:
+        processes = {role: stack.enter_context(ros_env.background(cmd, env=env))
+                     for role, cmd in cmds.items()}
+        driver = stack.enter_context(LifecycleDriver(domain_id))
+
+        def transition(role: str, label: str) -> None:
+            if not driver.transition(f'/{role}', label):
+                raise RuntimeError(f'{role} failed to {label}:\n{processes[role].output()}')
+
+        for role in ('listener', 'talker'):
+            transition(role, 'configure')
+        for role in ('listener', 'talker'):
+            transition(role, 'activate')
+        time.sleep(warmup + seconds)
+        transition('talker', 'deactivate')
+        time.sleep(0.3)  # messages in flight
+        transition('listener', 'deactivate')
+        reports: dict[str, Any] = {}
+
+        def reported() -> bool:
+            for role, process in processes.items():
+                reports[role] = _report(process.output(), role)
+            return all(reports.values())
+
+        if not wait_until(reported, timeout=10):
+            raise RuntimeError('no report:\n' + '\n'.join(
+                f'--- {role}:\n{p.output()[-3000:]}' for role, p in processes.items()))
+    talker, listener = reports['talker'], reports['listener']
+    latencies = sorted(listener['latencies'])
+    if len(latencies) < 2:
+        raise RuntimeError(f'the listener received {len(latencies)} messages')
+    sent_span = (talker['last'] - talker['first']) / 1e9
+    received_span = (listener['last'] - listener['start']) / 1e9
+    quantiles = statistics.quantiles(latencies, n=100, method='inclusive')
+    return Run(
+        sent_rate=(talker['sent'] - burst) / sent_span if sent_span > 0 else 0.0,
+        received_rate=(len(latencies) - 1) / received_span if received_span > 0 else 0.0,
+        received=len(latencies),
+        latency_us={'p50': quantiles[49] / 1e3, 'p90': quantiles[89] / 1e3,
+                    'p99': quantiles[98] / 1e3, 'max': latencies[-1] / 1e3})
+
+
+def cpp_skip_reason() -> str:
+    """Say why the C++ pair is not compared here (it is compared nowhere yet)."""
+    packages = Path(sys.prefix) / 'share' / 'ament_index' / 'resource_index' / 'packages'
+    missing = [p for p in ('rclcpp', 'rclcpp_lifecycle') if not (packages / p).is_file()]
+    if missing:
+        return (f'{" and ".join(missing)} not installed in {sys.prefix} (not on PyPI); '
+                'run this on a ROS 2 install')
+    with tempfile.TemporaryDirectory(prefix='robmosys-bench-cpp-') as tmp:
+        src = Path(tmp)
+        write_models(src)
+        path = src / 'bench_talker' / 'robmosys.yaml'
+        path.write_text(path.read_text().replace('language: python', 'language: cpp'))
+        result = load_workspace([path])
+        try:
+            result.raise_errors()
+            plan_package(result.workspace, 'bench_talker')
+        except RobmosysError as error:
+            return f'the C++ generator cannot generate the pair: {error}'
+    return 'rclcpp and the C++ generator exist, but the C++ pair of this benchmark is ' \
+        'not written yet'
+
+
+METRICS = (  # mode, label, key, higher is better
+    ('latency', 'latency p50 (us)', 'p50', False),
+    ('latency', 'latency p90 (us)', 'p90', False),
+    ('latency', 'latency p99 (us)', 'p99', False),
+    ('throughput', 'messages sent/s', 'sent_rate', True),
+    ('throughput', 'messages received/s', 'received_rate', True),
+)
+
+
+def _value(run: Run, key: str) -> float:
+    return run.latency_us[key] if key in run.latency_us else float(getattr(run, key))
+
+
+def report(runs: dict[tuple[str, str], list[Run]], burst: int) -> str:
+    """Return each figure's best value over the rounds, per pair, and their ratio."""
+    rows = []
+    for mode, label, key, higher in METRICS:
+        if (mode, 'generated') not in runs:
+            continue
+        values = {kind: [_value(r, key) for r in runs[(mode, kind)]]
+                  for kind in ('generated', 'hand-written')}
+        pick = max if higher else min
+        generated, handwritten = pick(values['generated']), pick(values['hand-written'])
+        rows.append([
+            f'{mode} ({"1" if mode == "latency" else burst}/10 ms)', label,
+            f'{generated:.0f}', f'{handwritten:.0f}', ratio(generated, handwritten),
+            ' '.join(f'{v:.0f}' for v in values['generated']),
+            ' '.join(f'{v:.0f}' for v in values['hand-written']),
+        ])
+    return table(['load', 'figure', 'generated', 'hand-written', 'ratio gen/hand',
+                  'generated per round', 'hand-written per round'], rows)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the benchmark and print its figures."""
+    parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    parser.add_argument('--seconds', type=float, default=5.0,
+                        help='measured seconds per run, after the warm-up (default: 5)')
+    parser.add_argument('--warmup', type=float, default=1.0,
+                        help='seconds of each run not measured (default: 1)')
+    parser.add_argument('--burst', type=int, default=100,
+                        help='messages per 10 ms period under throughput load (default: 100)')
+    parser.add_argument('--rounds', type=int, default=3,
+                        help='runs per pair and load; the best counts (default: 3)')
+    parser.add_argument('--loads', nargs='+', choices=('latency', 'throughput'),
+                        default=['latency', 'throughput'],
+                        help='which loads to run (default: both)')
+    args = parser.parse_args(argv)
+    print_machine('run time: generated Python pub/sub pair vs hand-written rclpy pair')
+    with tempfile.TemporaryDirectory(prefix='robmosys-bench-run-') as tmp:
+        root = Path(tmp)
+        write_models(root / 'src')
+        install = build(root)
+        base_env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
+        runs: dict[tuple[str, str], list[Run]] = {}
+        for round_ in range(args.rounds):
+            # alternate which pair goes first, so that a drift of the load hits both
+            kinds = ['generated', 'hand-written'][::1 if round_ % 2 == 0 else -1]
+            for mode in args.loads:
+                burst = 1 if mode == 'latency' else args.burst
+                for kind in kinds:
+                    cmds = commands('generated' if kind == 'generated' else 'handwritten',
+                                    install, burst, args.warmup)
+                    run = run_pair(cmds, base_env, burst, args.seconds, args.warmup)
+                    runs.setdefault((mode, kind), []).append(run)
+                    print(f'  round {round_ + 1}, {mode}, {kind}: {run.received} received, '
+                          f'p50 {run.latency_us["p50"]:.0f} us, '
+                          f'{run.received_rate:.0f}/s received', flush=True)
+    print(report(runs, args.burst))
+    print(f'C++: skipped: {cpp_skip_reason()}')
+    print_end()
+    return 0
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())

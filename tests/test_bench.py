@@ -1,0 +1,86 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""The benchmarks of bench/ still run, in a tiny configuration.
+
+Benchmarks are not tests: nothing here asserts on a time. These tests run each
+benchmark's code paths on tiny workspaces and short runs, so that a change of the
+generator or of the harness that breaks a benchmark shows up in CI, and check what
+the benchmarks rely on (what they generate, that ratios are printed).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+import re
+import sys
+
+import pytest
+
+BENCH = Path(__file__).resolve().parent.parent / 'bench'
+sys.path.insert(0, str(BENCH))
+
+import bench_colcon  # noqa: E402
+import bench_generation  # noqa: E402
+import bench_runtime  # noqa: E402
+from conftest import requires_ros  # noqa: E402
+import synthetic  # noqa: E402
+
+RATIO = r'\d+\.\d\dx'
+
+
+def test_synthetic_workspace_is_valid_and_generates(tmp_path):
+    shape = synthetic.write_workspace(tmp_path / 'src', 12)
+    assert (shape.components, shape.service_definitions, shape.systems) == (12, 2, 2)
+    phases = bench_generation.generate_workspace(tmp_path / 'src', tmp_path / 'out',
+                                                 synthetic.ros_index())
+    assert sorted(p.name for p in (tmp_path / 'out').iterdir()) == sorted(
+        [f'bench_g{g}_c{i}' for g in (0, 1) for i in range(10 if g == 0 else 2)] +
+        ['bench_g0_msgs', 'bench_g1_msgs', 'bench_g0_system', 'bench_g1_system'])
+    assert phases.written > 0 and phases.unchanged == 0
+    # the user's implementation files were created next to the models
+    assert (tmp_path / 'src' / 'bench_g1_c1' / 'src' / 'bench_g1_c1' /
+            'Node1x1_impl.py').is_file()
+    again = bench_generation.generate_workspace(tmp_path / 'src', tmp_path / 'out',
+                                                synthetic.ros_index())
+    assert (again.written, again.unchanged) == (0, phases.written)
+
+
+def test_handwritten_copy_has_the_generated_packages(tmp_path):
+    synthetic.write_workspace(tmp_path / 'models', 2, own_messages=False)
+    assert synthetic.write_handwritten(tmp_path / 'models', tmp_path / 'hand') == 3
+    for package in ('bench_g0_c0', 'bench_g0_c1', 'bench_g0_system'):
+        assert (tmp_path / 'hand' / package / 'package.xml').is_file()
+        assert not (tmp_path / 'hand' / package / 'robmosys.yaml').exists()
+
+
+def test_generation_benchmark_prints_ratios(capsys):
+    assert bench_generation.main(['--sizes', '2', '4', '--repeat', '1']) == 0
+    out = capsys.readouterr().out
+    assert 'nproc' in out and 'load average at end' in out
+    rows = re.findall(rf'^\| ([24]) .* \| ({RATIO}) *\|$', out, re.MULTILINE)
+    assert [n for n, _ in rows] == ['2', '4', '2', '4']
+    assert rows[0][1] == '1.00x'
+
+
+@requires_ros
+@pytest.mark.integration
+def test_colcon_benchmark_prints_ratios(capsys):
+    assert bench_colcon.main(['--list-size', '2', '--build-size', '0', '--repeat', '1']) == 0
+    out = capsys.readouterr().out
+    assert re.search(rf'^\| colcon list \(2 components\) +\| 4 +\| 1 .* {RATIO} *\|$', out,
+                     re.MULTILINE), out
+
+
+@requires_ros
+@pytest.mark.integration
+def test_runtime_benchmark_prints_ratios(capsys):
+    """The generated pair and the hand-written one both exchange messages."""
+    # the latency load differs only by a burst of 1: one load is enough here
+    assert bench_runtime.main(['--seconds', '0.5', '--warmup', '0.2', '--rounds', '1',
+                               '--burst', '5', '--loads', 'throughput']) == 0
+    out = capsys.readouterr().out
+    for kind in ('generated', 'hand-written'):
+        received = re.search(rf'round 1, throughput, {kind}: (\d+) received', out)
+        assert received and int(received.group(1)) >= 2, out
+    assert len(re.findall(rf'^\| throughput .* {RATIO} +\|', out, re.MULTILINE)) == 2, out
+    assert 'C++: skipped: ' in out

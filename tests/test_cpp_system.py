@@ -1,0 +1,244 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""C++ components built by colcon and run on real ROS 2, next to Python ones.
+
+Where rclcpp, rclcpp_lifecycle and rclcpp_components are not in the ROS prefix
+(PyPI has no rclcpp), colcon skips the C++ packages and says why: the first
+test checks exactly that, the others skip with the reason. Where they are (a
+ROS 2 Jazzy or Kilted install sourced before ``make test``), the examples of
+test_workspace are built with the rest and run as mixed_system's launch file
+would start them.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import re
+import signal
+import sys
+
+import pytest
+
+from colcon_robmosys.ros2.cpp import CPP_CLIENT_PACKAGES
+from colcon_robmosys.task.build import missing_prefix_packages
+from conftest import requires_ros
+from harness import ros_env
+from harness.system import LifecycleDriver, read_launch_file, wait_until
+
+pytestmark = [pytest.mark.integration, requires_ros]
+
+CPP_PACKAGES = ('cpp_client', 'cpp_publisher', 'cpp_receiver', 'cpp_sender', 'cpp_server',
+                'cpp_subscriber')
+SYSTEM = 'mixed_system'
+
+
+def rclcpp_missing_reason() -> str | None:
+    """Return why C++ components cannot be built here, or None."""
+    missing = missing_prefix_packages(CPP_CLIENT_PACKAGES, [],
+                                      environ=ros_env.loopback_env(1))
+    if not missing:
+        return None
+    return (f'{", ".join(missing)} not found in AMENT_PREFIX_PATH/CMAKE_PREFIX_PATH '
+            '(not on PyPI): colcon skips the C++ components here')
+
+
+requires_rclcpp = pytest.mark.skipif(rclcpp_missing_reason() is not None,
+                                     reason=rclcpp_missing_reason() or '')
+
+
+def test_cpp_packages_are_built_or_skipped_with_the_reason(test_workspace_built):
+    """Without rclcpp the build succeeds, names what it skipped, builds the system."""
+    install, output = test_workspace_built.install, test_workspace_built.build_output
+    share = test_workspace_built.share(SYSTEM)
+    assert (share / 'launch' / 'activate.py').is_file()
+    for package in CPP_PACKAGES:
+        executable = install / package / 'lib' / package
+        skipped = f"Skipped building '{package}': it needs "
+        if rclcpp_missing_reason():
+            assert skipped in output, output
+            assert not executable.exists()
+        else:
+            assert skipped not in output
+            registered = install / package / 'share' / 'ament_index' / 'resource_index' / \
+                'rclcpp_components' / package
+            assert registered.read_text().startswith(f'{package}::'), package
+    if rclcpp_missing_reason():
+        assert 'packages had stderr output: ' + ' '.join(CPP_PACKAGES) in output
+
+
+@contextlib.contextmanager
+def _system(built, domain_id: int, names: list[str]):
+    """Start some instances of mixed_system as its launch.py would."""
+    share = built.share(SYSTEM)
+    nodes = {n.name: n for n in read_launch_file(share / 'launch' / 'launch.py', share)}
+    env = built.env(domain_id)
+    with contextlib.ExitStack() as stack:
+        processes = {name: stack.enter_context(
+            ros_env.background(nodes[name].command(built.install), env=env))
+            for name in names}
+        driver = stack.enter_context(LifecycleDriver(domain_id))
+        yield {name: nodes[name].fqn for name in names}, processes, driver
+
+
+def _bring_up(driver: LifecycleDriver, fqns: list[str]) -> None:
+    for transition in ('configure', 'activate'):
+        for fqn in fqns:
+            assert driver.transition(fqn, transition), f'{transition} {fqn}'
+
+
+MAPS = re.compile(r'got map data: width (\d+), height (\d+)')
+
+
+@requires_rclcpp
+def test_cpp_and_python_publish_to_each_other(test_workspace_built, domain_id):
+    """C++ publisher -> Python subscriber, Python publisher -> C++ subscriber."""
+    with _system(test_workspace_built, domain_id,
+                 ['cpp_pub', 'py_sub', 'py_pub', 'cpp_sub']) as (fqn, out, driver):
+        assert driver.state(fqn['cpp_pub']) == 'unconfigured'
+        assert driver.parameters(fqn['cpp_pub'], ['indoor', 'noOfScans']) == \
+            {'indoor': True, 'noOfScans': 0}
+        for name in fqn:
+            assert driver.transition(fqn[name], 'configure')
+        assert driver.state(fqn['cpp_pub']) == 'inactive'
+        wait_until(lambda: False, timeout=1.5)
+        assert 'Publishing map' not in out['cpp_pub'].output()
+        assert not MAPS.search(out['py_sub'].output())
+
+        for name in fqn:
+            assert driver.transition(fqn[name], 'activate')
+        for subscriber in ('py_sub', 'cpp_sub'):
+            assert wait_until(lambda: len(MAPS.findall(out[subscriber].output())) >= 2,
+                              timeout=20), out[subscriber].output()
+            assert set(MAPS.findall(out[subscriber].output())) == {('16', '16')}
+        assert 'resolution 0.10' in out['cpp_sub'].output()
+
+        # deactivated, the C++ timer stops; cleaned up and configured again, it restarts
+        assert driver.transition(fqn['cpp_pub'], 'deactivate')
+        wait_until(lambda: False, timeout=0.6)
+        published = out['cpp_pub'].output().count('Publishing map')
+        wait_until(lambda: False, timeout=1.5)
+        assert out['cpp_pub'].output().count('Publishing map') == published
+        assert driver.transition(fqn['cpp_pub'], 'cleanup')
+        assert driver.state(fqn['cpp_pub']) == 'unconfigured'
+        _bring_up(driver, [fqn['cpp_pub']])
+        assert wait_until(
+            lambda: out['cpp_pub'].output().count('Publishing map') > published + 1, timeout=10)
+
+        # SIGTERM ends the C++ process cleanly
+        process = out['cpp_sub'].proc
+        process.send_signal(signal.SIGTERM)
+        assert process.wait(timeout=15) == 0, out['cpp_sub'].output()
+
+
+PYTHON_CLIENT = """
+import sys
+import rclpy
+from simple_msgs.srv import CountCells
+rclpy.init()
+node = rclpy.create_node('python_client')
+client = node.create_client(CountCells, sys.argv[1])
+assert client.wait_for_service(timeout_sec=20), 'no service'
+future = client.call_async(CountCells.Request(width=int(sys.argv[2]), height=7))
+rclpy.spin_until_future_complete(node, future, timeout_sec=20)
+print('cells', future.result().cells)
+node.destroy_node()
+rclpy.shutdown()
+"""
+
+
+@requires_rclcpp
+def test_cpp_server_answers_python_and_cpp_clients(test_workspace_built, domain_id):
+    """A Python client and the C++ client (blocking and asynchronous) query the C++ server."""
+    env = test_workspace_built.env(domain_id)
+    with _system(test_workspace_built, domain_id, ['server', 'client']) as (fqn, out, driver):
+        service = '/server/qCount'
+        assert driver.transition(fqn['server'], 'configure')
+
+        def ask(width: int) -> str:
+            result = ros_env.run([sys.executable, '-c', PYTHON_CLIENT, service, str(width)],
+                                 env=env, timeout=60)
+            assert result.returncode == 0, result.stderr
+            return result.stdout.strip()
+
+        # inactive: the server answers the default response and warns
+        assert ask(3) == 'cells 0'
+        assert 'while inactive' in out['server'].output()
+        assert driver.transition(fqn['server'], 'activate')
+        assert ask(3) == 'cells 21'
+
+        _bring_up(driver, [fqn['client']])
+        assert wait_until(lambda: 'async answer: 28 cells' in out['client'].output(),
+                          timeout=20), out['client'].output()
+        assert 'blocking answer: 21 cells' in out['client'].output()
+        assert 'no answer' not in out['client'].output()
+
+
+@requires_rclcpp
+def test_cpp_sender_sends_to_cpp_receiver_with_checked_parameters(
+        test_workspace_built, domain_id):
+    """Send pattern, parameter override, and ROS 2 itself refusing bad values."""
+    from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue
+    from rcl_interfaces.srv import SetParameters
+    with _system(test_workspace_built, domain_id, ['sender', 'receiver']) as (fqn, out, driver):
+        assert driver.parameters(fqn['sender'], ['width', 'height', 'frame']) == \
+            {'width': 5, 'height': 4, 'frame': 'map'}
+
+        def set_parameter(name: str, value: ParameterValue) -> bool:
+            request = SetParameters.Request(parameters=[Parameter(name=name, value=value)])
+            answer = driver._call(SetParameters, f'{fqn["sender"]}/set_parameters',
+                                  request, 20)
+            return answer.results[0].successful
+
+        integer = ParameterType.PARAMETER_INTEGER
+        assert not set_parameter('width', ParameterValue(type=integer, integer_value=0))
+        assert not set_parameter('width', ParameterValue(
+            type=ParameterType.PARAMETER_STRING, string_value='wide'))
+        assert not set_parameter('frame', ParameterValue(
+            type=ParameterType.PARAMETER_STRING, string_value='odom'))
+        assert set_parameter('height', ParameterValue(type=integer, integer_value=6))
+
+        _bring_up(driver, [fqn['receiver'], fqn['sender']])
+        assert wait_until(lambda: 'received map: width 5, height 6' in out['receiver'].output(),
+                          timeout=20), out['receiver'].output()
+
+
+COMPONENT_LOADER = """
+import sys
+import rclpy
+from composition_interfaces.srv import LoadNode
+rclpy.init()
+node = rclpy.create_node('component_loader')
+client = node.create_client(LoadNode, '/ComponentManager/_container/load_node')
+assert client.wait_for_service(timeout_sec=20), 'no container'
+request = LoadNode.Request(package_name=sys.argv[1], plugin_name=sys.argv[2],
+                           node_name=sys.argv[3])
+future = client.call_async(request)
+rclpy.spin_until_future_complete(node, future, timeout_sec=30)
+print('loaded', future.result().success, future.result().full_node_name)
+node.destroy_node()
+rclpy.shutdown()
+"""
+
+
+@requires_rclcpp
+def test_cpp_component_runs_in_a_container(test_workspace_built, domain_id):
+    """rclcpp_components loads the registered component into a container process."""
+    from harness.ros_env import background, run
+    env = test_workspace_built.env(domain_id)
+    container = None
+    for prefix in env['AMENT_PREFIX_PATH'].split(os.pathsep):
+        candidate = f'{prefix}/lib/rclcpp_components/component_container_mt'
+        if prefix and os.path.exists(candidate):
+            container = candidate
+            break
+    if container is None:
+        pytest.skip('component_container_mt of rclcpp_components is not installed')
+    with background([container, '--ros-args', '-r', '__node:=ComponentManager'],
+                    env=env) as process, LifecycleDriver(domain_id) as driver:
+        result = run([sys.executable, '-c', COMPONENT_LOADER, 'cpp_publisher',
+                      'cpp_publisher::PeriodicPublisher', 'contained'], env=env, timeout=90)
+        assert result.stdout.strip() == 'loaded True /contained', result.stderr
+        _bring_up(driver, ['/contained'])
+        assert wait_until(lambda: 'Publishing map' in process.output(), timeout=20), \
+            process.output()
