@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import ast
 from pathlib import Path
+import re
 import shutil
 import subprocess
 import sys
@@ -92,6 +93,30 @@ def _model_files(text: str) -> dict[str, dict]:
                 'gain': {'type': 'double', 'default': 0.5, 'description': text},
             },
         }]},
+        'hostile_cpp': {'robmosys': 1, 'components': [{
+            'name': 'HostileCpp', 'package': 'hostile_cpp', 'language': 'cpp',
+            'description': text, **who,
+            'ports': {
+                'pNote': {'pattern': 'push', 'role': 'provided',
+                          'type': 'hostile_msgs/msg/Note', 'description': text},
+                'rNote': {'pattern': 'push', 'role': 'required',
+                          'type': 'hostile_msgs/msg/Note', 'description': text},
+            },
+            'activities': {
+                'Loop': {'period': 1.0, 'functions': ['fCoded'], 'description': text},
+                'OnNote': {'trigger': 'rNote', 'functions': ['fUser'],
+                           'description': text},
+            },
+            'functions': {
+                'fCoded': {'description': text, 'code': 'count_ = 1;\n'},
+                'fUser': {'description': text},
+            },
+            'parameters': {
+                'label': {'type': 'string', 'default': text, 'description': text},
+                'labels': {'type': 'string[]', 'default': [text, text]},
+                'gain': {'type': 'double', 'default': 0.5, 'description': text},
+            },
+        }]},
         'hostile_system': {'robmosys': 1, 'systems': [{
             'package': 'hostile_system', 'description': text, **who,
             'instances': {'node': {'component': 'hostile',
@@ -129,6 +154,55 @@ def _python_shape(text: str) -> tuple[str, list[str]]:
             strings.append(node.value)
             node.value = ''
     return ast.dump(tree), strings
+
+
+_CPP_TOKEN = re.compile(r"""
+    (?P<comment>//[^\n]*|/\*.*?\*/)
+  | (?P<string>"(?:\\.|[^"\\\n])*")
+  | (?P<char>'(?:\\.|[^'\\\n])*')
+  | (?P<space>\s+)
+  | (?P<other>\w+|.)
+""", re.S | re.X)
+
+_CPP_ESCAPE = re.compile(r'\\([0-7]{1,3}|.)', re.S)
+
+
+def _cpp_decode(body: str) -> str:
+    """Return the text of the inside of a C++ string literal."""
+    out, pos = bytearray(), 0
+    for match in _CPP_ESCAPE.finditer(body):
+        out += body[pos:match.start()].encode('utf-8')
+        escape = match.group(1)
+        if escape[0] in '01234567':
+            out.append(int(escape, 8))
+        else:
+            out += {'n': b'\n', 't': b'\t', 'r': b'\r'}.get(escape, escape.encode('utf-8'))
+        pos = match.end()
+    out += body[pos:].encode('utf-8')
+    return out.decode('utf-8')
+
+
+def _cpp_shape(text: str) -> tuple[list[str], list[str], list[str]]:
+    """Return the tokens of C++ code without strings and comments, and those.
+
+    Adjacent string literals, which the compiler joins, are one string.
+    """
+    shape: list[str] = []
+    strings: list[str] = []
+    comments: list[str] = []
+    for match in _CPP_TOKEN.finditer(text):
+        kind, token = match.lastgroup, match.group()
+        if kind == 'comment':
+            comments.append(token)
+        elif kind == 'string':
+            if shape and shape[-1] == '""':
+                strings[-1] += _cpp_decode(token[1:-1])
+            else:
+                shape.append('""')
+                strings.append(_cpp_decode(token[1:-1]))
+        elif kind != 'space':
+            shape.append(token)
+    return shape, strings, comments
 
 
 def _xml_shape(element: ET.Element) -> tuple:
@@ -200,13 +274,21 @@ def test_hostile_text_is_only_data(tmp_path, plain, text):
             assert spec.fields[0].default_value == value
             assert spec.constants[0].value == value
             seen.add('msg')
+        elif path.suffix in ('.cpp', '.hpp'):
+            shape, strings, comments = _cpp_shape(data)
+            assert shape == _cpp_shape(plain_data)[0], f'{name}: the code changed'
+            if text in strings:
+                seen.add('cpp')
+            # a text of several lines is a run of // comments
+            if _words(text) in _words(' '.join(c.lstrip('/') for c in comments)):
+                seen.add('cpp comment')
         elif path.name == MANIFEST:
             assert read_manifest(path).keys() == read_manifest(plain_files[name]).keys()
         else:
             # CMakeLists.txt, diagrams: no free text goes there
             # (a generator that starts writing some must check it parses here)
             assert data == plain_data, f'{name}: model text reached a file not checked here'
-    assert seen == {'python', 'docstring', 'xml', 'yaml', 'msg'}
+    assert seen == {'python', 'docstring', 'xml', 'yaml', 'msg', 'cpp', 'cpp comment'}
 
 
 def test_no_control_character_reaches_a_model(tmp_path):
