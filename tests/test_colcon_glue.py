@@ -32,7 +32,10 @@ def test_colcon_list_shows_one_package_per_model(workspace):
     result = colcon(['list'], cwd=workspace)
     assert result.returncode == 0, result.stderr
     rows = sorted(tuple(line.split('\t')[::2]) for line in result.stdout.splitlines())
+    # several components of one model file (sender and receiver) are a package each
     assert rows == [
+        ('add_client', '(robmosys.component)'),
+        ('add_server', '(robmosys.component)'),
         ('cpp_client', '(robmosys.component)'),
         ('cpp_publisher', '(robmosys.component)'),
         ('cpp_receiver', '(robmosys.component)'),
@@ -44,10 +47,18 @@ def test_colcon_list_shows_one_package_per_model(workspace):
         ('dummy_map_server', '(robmosys.component)'),
         ('dummy_robot_bringup', '(robmosys.system)'),
         ('dummy_robot_monitor', '(robmosys.component)'),
+        ('example_msgs', '(robmosys.interfaces)'),
+        ('examples_system', '(robmosys.system)'),
+        ('fibonacci_client', '(robmosys.component)'),
+        ('fibonacci_server', '(robmosys.component)'),
+        ('level_sensor', '(robmosys.component)'),
+        ('level_watcher', '(robmosys.component)'),
         ('map_tools', '(ros.ament_cmake)'),
         ('mixed_system', '(robmosys.system)'),
         ('publisher', '(robmosys.component)'),
         ('pubsub_system', '(robmosys.system)'),
+        ('receiver', '(robmosys.component)'),
+        ('sender', '(robmosys.component)'),
         ('simple_msgs', '(robmosys.interfaces)'),
         ('subscriber', '(robmosys.component)'),
     ]
@@ -108,10 +119,12 @@ def test_generate_creates_missing_implementation_only(workspace):
     # marked as colcon marks build/: not found as packages next time
     assert (workspace / 'gen' / 'COLCON_IGNORE').is_file()
     assert sorted(p.name for p in (workspace / 'gen').iterdir() if p.is_dir()) == [
-        'cpp_client', 'cpp_publisher', 'cpp_receiver', 'cpp_sender', 'cpp_server',
-        'cpp_subscriber', 'dummy_joint_states', 'dummy_laser', 'dummy_map_server',
-        'dummy_robot_bringup', 'dummy_robot_monitor', 'mixed_system', 'publisher',
-        'pubsub_system', 'simple_msgs', 'subscriber']
+        'add_client', 'add_server', 'cpp_client', 'cpp_publisher', 'cpp_receiver',
+        'cpp_sender', 'cpp_server', 'cpp_subscriber', 'dummy_joint_states', 'dummy_laser',
+        'dummy_map_server', 'dummy_robot_bringup', 'dummy_robot_monitor', 'example_msgs',
+        'examples_system', 'fibonacci_client', 'fibonacci_server', 'level_sensor',
+        'level_watcher', 'mixed_system', 'publisher', 'pubsub_system', 'receiver', 'sender',
+        'simple_msgs', 'subscriber']
 
 
 def test_generate_honours_package_selection(workspace):

@@ -10,7 +10,6 @@ model is seen carrying data, with the values the parameter overrides set.
 
 from __future__ import annotations
 
-import ast
 import contextlib
 from pathlib import Path
 import sys
@@ -22,7 +21,8 @@ from colcon_robmosys.model.index import InterfaceIndex
 from colcon_robmosys.model.types import Component, Instance, System
 from conftest import requires_ros, TEST_WORKSPACE
 from harness.ros_env import background
-from harness.system import LifecycleDriver, read_launch_file, wait_until
+from harness.system import (
+    activation_waves, LifecycleDriver, read_activate_after, read_launch_file, wait_until)
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
@@ -68,21 +68,13 @@ def expected_report(component: Component, values: dict[str, object]) -> str:
     return f"joint states of {','.join(values['joint_names'])}"
 
 
-def activate_after(share: Path) -> dict[str, list[str]]:
-    """Return the ACTIVATE_AFTER table of the generated activate.py."""
-    tree = ast.parse((share / 'launch' / 'activate.py').read_text())
-    assignment = next(n for n in tree.body if isinstance(n, ast.Assign) and
-                      ast.unparse(n.targets[0]) == 'ACTIVATE_AFTER')
-    return ast.literal_eval(assignment.value)
-
-
 def test_dummy_robot_comes_up_in_order_and_every_connection_carries_data(
         test_workspace_built, domain_id):
     system, components = _model()
     share = test_workspace_built.share(SYSTEM)
     nodes = {n.name: n for n in read_launch_file(share / 'launch' / 'launch.py', share)}
     assert set(nodes) == {i.name for i in system.instances}
-    order = activate_after(share)
+    order = read_activate_after(share / 'launch' / 'activate.py')
     # the map server comes first, the unmanaged spare laser not at all
     assert order['map_server'] == [] and 'laser_spare' not in order
     assert all('map_server' in after for name, after in order.items() if name != 'map_server')
@@ -111,16 +103,11 @@ def test_dummy_robot_comes_up_in_order_and_every_connection_carries_data(
         for name in order:
             assert driver.transition(nodes[name].fqn, 'configure'), output(name)
         # activate.py's order: each instance once those it comes after are active
-        active: list[str] = []
-        while len(active) < len(order):
-            ready = [n for n in order if n not in active and
-                     all(a in active for a in order[n])]
-            assert ready, f'activation order cycle in {order}'
-            for name in ready:
+        for wave in activation_waves(order):
+            for name in wave:
                 for before in order[name]:
                     assert driver.state(nodes[before].fqn) == 'active'
                 assert driver.transition(nodes[name].fqn, 'activate'), output(name)
-                active.append(name)
         assert driver.state(nodes['laser_spare'].fqn) == 'unconfigured'
 
         # every connection of the model carries data, with the overridden values

@@ -201,7 +201,8 @@ def test_function_the_user_lacks_is_named(tmp_path):
     assert str(error.value) == (
         f"{header}:17:1: error: class 'Server_impl' lacks the function 'fTick' of "
         'the model; the skeleton src-skel/cpp_server/Server_impl.hpp of the package '
-        'shows what the model asks for')
+        'shows what the model asks for: '
+        f"{tmp_path / 'out' / 'src-skel' / 'cpp_server' / 'Server_impl.hpp'}")
 
 
 def test_function_named_only_in_a_comment_does_not_count(tmp_path):
@@ -218,8 +219,8 @@ def test_port_the_generator_does_not_map_gives_a_clear_error(tmp_path):
     model = src / 'cpp_receiver' / 'robmosys.yaml'
     model.write_text(model.read_text().replace(
         '    activities:\n',
-        '      eAlarm: {pattern: event, role: required, type: simple_msgs/msg/Map,\n'
-        '               activation: simple_msgs/msg/OGM}\n    activities:\n'))
+        '      eAlarm: {pattern: event, role: required, type: example_msgs/LevelAbove}\n'
+        '    activities:\n'))
     with pytest.raises(RobmosysError) as error:
         plan_package(_load(src), 'cpp_receiver')
     assert str(error.value).endswith(

@@ -3,7 +3,7 @@
 """The generated launch files, run for real by launch_ros where it is installed.
 
 launch and launch_ros are not on PyPI: on a machine without a ROS 2 install these
-tests skip, and tests/test_generated_code.py checks the launch files by reading them.
+tests skip, and tests/test_systems.py checks the launch files by reading them.
 """
 
 from __future__ import annotations
@@ -41,7 +41,7 @@ def launch_env(test_workspace_built, domain_id):
         [sys.executable, '-c', 'import launch_ros'], env=env, capture_output=True, timeout=60)
     if probe.returncode != 0:
         pytest.skip('launch_ros is not installed (it is not on PyPI): the launch files are '
-                    'checked by reading them in test_generated_code.py')
+                    'read and compared with the model in test_systems.py')
     return env
 
 
@@ -86,10 +86,26 @@ def test_dummy_robot_activates_in_order_and_wires_every_connection(
         wanted.add(expected_report(components[ends[0]],
                                    effective_parameters(provider, components[ends[0]])))
     share = test_workspace_built.share('dummy_robot_bringup')
-    with background([sys.executable, '-c', LAUNCHER, str(share / 'launch' / 'activate.py')],
-                    env=launch_env) as launched:
-        assert wait_until(lambda: all(w in launched.output() for w in wanted), timeout=60), \
-            launched.output()
-        with LifecycleDriver(domain_id) as driver:
-            assert driver.state('/spare/laser_spare') == 'unconfigured'
-            assert driver.state('/dummy_robot/monitor') == 'active'
+    fqns = {i.name: f'{i.namespace}/{i.name}' for i in system.instances}
+    with contextlib.ExitStack() as stack:
+        # watching before the launch, so that no transition is missed
+        driver = stack.enter_context(LifecycleDriver(domain_id))
+        reached = driver.watch_transitions(list(fqns.values()))
+        launched = stack.enter_context(background(
+            [sys.executable, '-c', LAUNCHER, str(share / 'launch' / 'activate.py')],
+            env=launch_env))
+
+        def up() -> bool:
+            driver.spin()
+            return all(w in launched.output() for w in wanted)
+
+        assert wait_until(up, timeout=60, period=0), launched.output()
+        active = [fqn for fqn, state in reached if state == 'active']
+        # each managed instance was activated once, after those it comes after
+        managed = [i for i in system.instances if i.activate]
+        assert sorted(active) == sorted(fqns[i.name] for i in managed), reached
+        for instance in managed:
+            for before in instance.after:
+                assert active.index(fqns[before]) < active.index(fqns[instance.name]), active
+        assert driver.state('/spare/laser_spare') == 'unconfigured'
+        assert driver.state('/dummy_robot/monitor') == 'active'

@@ -95,6 +95,7 @@ def test_service_definition_package(workspace):
     assert [o.name for o in msgs.communication_objects] == ['Cell', 'Grid']
     assert [q.name for q in msgs.queries] == ['GetCell']
     assert [a.name for a in msgs.actions] == ['Explore']
+    assert [e.name for e in msgs.events] == ['Alarm']
 
 
 def test_fields_types_and_defaults(workspace):
@@ -160,6 +161,11 @@ def test_query_and_action(workspace):
     assert _fields(action.goal) == {'area': ('demo_msgs/Cell[<=16]', None)}
     assert _fields(action.result) == {'map': ('demo_msgs/Grid', None)}
     assert _fields(action.feedback) == {'progress': ('float32', 0.0)}
+    event = msgs.events[0]
+    assert event.description == 'A cell whose value crosses a threshold.'
+    assert _fields(event.activation) == {'threshold': ('int8', None)}
+    assert _fields(event.event) == {'cell': ('demo_msgs/Cell', None),
+                                    'value': ('int8', None)}
 
 
 # components ---------------------------------------------------------------
@@ -182,26 +188,22 @@ def test_component_package(workspace):
 
 def test_ports_of_every_pattern_and_role(workspace):
     talker = _model(workspace, 'demo_talker', Component)
-    assert [(p.name, p.pattern, p.role, str(p.type),
-             p.activation and str(p.activation)) for p in talker.ports] == [
-        ('pGrid', Pattern.PUSH, Role.PROVIDED, 'demo_msgs/msg/Grid', None),
-        ('rCommand', Pattern.PUSH, Role.REQUIRED, 'std_msgs/msg/String',
-         None),
-        ('sLog', Pattern.SEND, Role.REQUIRED, 'std_msgs/msg/String', None),
-        ('sInbox', Pattern.SEND, Role.PROVIDED, 'demo_msgs/msg/Cell', None),
-        ('qGetCell', Pattern.QUERY, Role.PROVIDED, 'demo_msgs/srv/GetCell',
-         None),
+    assert [(p.name, p.pattern, p.role, str(p.type)) for p in talker.ports] == [
+        ('pGrid', Pattern.PUSH, Role.PROVIDED, 'demo_msgs/msg/Grid'),
+        ('rCommand', Pattern.PUSH, Role.REQUIRED, 'std_msgs/msg/String'),
+        ('sLog', Pattern.SEND, Role.REQUIRED, 'std_msgs/msg/String'),
+        ('sInbox', Pattern.SEND, Role.PROVIDED, 'demo_msgs/msg/Cell'),
+        ('qGetCell', Pattern.QUERY, Role.PROVIDED, 'demo_msgs/srv/GetCell'),
         ('qAdd', Pattern.QUERY, Role.REQUIRED,
-         'example_interfaces/srv/AddTwoInts', None),
-        ('eAlarm', Pattern.EVENT, Role.PROVIDED, 'demo_msgs/msg/Cell',
-         'std_msgs/msg/String'),
-        ('eObstacle', Pattern.EVENT, Role.REQUIRED, 'demo_msgs/msg/Cell',
-         'std_msgs/msg/String'),
+         'example_interfaces/srv/AddTwoInts'),
+        # an event is an action of its service definition
+        ('eAlarm', Pattern.EVENT, Role.PROVIDED, 'demo_msgs/action/Alarm'),
+        ('eObstacle', Pattern.EVENT, Role.REQUIRED, 'demo_msgs/action/Alarm'),
         ('aExplore', Pattern.ACTION, Role.PROVIDED,
-         'demo_msgs/action/Explore', None),
+         'demo_msgs/action/Explore'),
         # pkg/Type takes the kind of interface the pattern exchanges
         ('aFibonacci', Pattern.ACTION, Role.REQUIRED,
-         'example_interfaces/action/Fibonacci', None),
+         'example_interfaces/action/Fibonacci'),
     ]
     assert talker.port('pGrid').description == \
         'The grid, published every period.'
@@ -378,10 +380,12 @@ def test_example_workspace(tmp_path):
     assert result.diagnostics == []
     workspace = result.workspace
     assert sorted(m.package for m in workspace.models) == [
-        'cpp_client', 'cpp_publisher', 'cpp_receiver', 'cpp_sender', 'cpp_server',
-        'cpp_subscriber', 'dummy_joint_states', 'dummy_laser', 'dummy_map_server',
-        'dummy_robot_bringup', 'dummy_robot_monitor', 'mixed_system', 'publisher',
-        'pubsub_system', 'simple_msgs', 'subscriber']
+        'add_client', 'add_server', 'cpp_client', 'cpp_publisher', 'cpp_receiver',
+        'cpp_sender', 'cpp_server', 'cpp_subscriber', 'dummy_joint_states', 'dummy_laser',
+        'dummy_map_server', 'dummy_robot_bringup', 'dummy_robot_monitor', 'example_msgs',
+        'examples_system', 'fibonacci_client', 'fibonacci_server', 'level_sensor',
+        'level_watcher', 'mixed_system', 'publisher', 'pubsub_system', 'receiver', 'sender',
+        'simple_msgs', 'subscriber']
 
     msgs = _model(workspace, 'simple_msgs', ServiceDefinition)
     ogm, map_ = msgs.communication_objects

@@ -25,7 +25,7 @@ from colcon_robmosys.model.index import InterfaceIndex
 from colcon_robmosys.model.types import Component, Pattern, Role, System, Workspace
 from colcon_robmosys.ros2 import plan_package
 from conftest import colcon, requires_ros, TEST_WORKSPACE
-from harness.system import read_launch_file
+from harness.system import read_activate_after, read_launch_file
 
 #: What the launch files pass besides the node's identity (launch_ros API).
 LAUNCH_EXTRA = {'output': 'screen'}
@@ -85,7 +85,7 @@ def generated(tmp_path_factory) -> Path:
 
 
 def test_every_example_system_is_checked():
-    assert SYSTEMS == ['dummy_robot_bringup', 'mixed_system', 'pubsub_system']
+    assert SYSTEMS == ['dummy_robot_bringup', 'examples_system', 'mixed_system', 'pubsub_system']
 
 
 def _launch_files(package: str) -> list[str]:
@@ -132,10 +132,7 @@ def test_activate_file_follows_the_activation_model(generated, launch_file):
     """activate*.py manages the instances with activate: true, in their order."""
     package, name = launch_file.split('/')
     system = _system(package)
-    tree = ast.parse((generated / package / 'launch' / name).read_text())
-    assignment = next(n for n in tree.body if isinstance(n, ast.Assign) and
-                      ast.unparse(n.targets[0]) == 'ACTIVATE_AFTER')
-    activate_after = ast.literal_eval(assignment.value)
+    activate_after = read_activate_after(generated / package / 'launch' / name)
     instance = name.split('.')[1] if name.count('.') == 2 else None
     managed = [i for i in system.instances if i.activate and instance in (None, i.name)]
     in_file = {i.name for i in managed}

@@ -1,11 +1,13 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
-"""Build test_workspace with colcon and run its publisher/subscriber system.
+"""Build test_workspace with colcon and run one of its systems.
 
-`make demo` runs this with the venv's Python. launch_ros is not on PyPI, so
-the system is brought up the way its generated launch.py describes: the same
-executables, node names, remappings and parameter file, then configured and
-activated through the nodes' lifecycle services, as activate.py does.
+`make demo` runs this with the venv's Python (the publisher/subscriber
+system; `--system dummy_robot_bringup` runs the dummy robot). launch_ros is
+not on PyPI, so the system is brought up the way its generated launch.py
+describes: the same executables, node names, remappings and parameter file,
+then configured and activated through the nodes' lifecycle services in the
+order of activate.py, which leaves unmanaged instances alone.
 """
 
 from __future__ import annotations
@@ -20,10 +22,10 @@ REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO / 'tests'))
 
 from harness import ros_env  # noqa: E402
-from harness.system import LifecycleDriver, read_launch_file  # noqa: E402
+from harness.system import (  # noqa: E402
+    activation_waves, LifecycleDriver, read_activate_after, read_launch_file)
 
 WORKSPACE = REPO / 'test_workspace'
-SYSTEM = 'pubsub_system'
 
 
 def build(domain_id: int) -> None:
@@ -37,13 +39,15 @@ def build(domain_id: int) -> None:
         sys.exit(f'colcon build failed with exit code {result.returncode}')
 
 
-def run_system(domain_id: int, seconds: float) -> None:
+def run_system(system: str, domain_id: int, seconds: float) -> None:
     """Start the system's nodes, activate them and show what they print."""
     install = WORKSPACE / 'install'
-    share = install / SYSTEM / 'share' / SYSTEM
+    share = install / system / 'share' / system
     nodes = read_launch_file(share / 'launch' / 'launch.py', share)
+    by_name = {node.name: node for node in nodes}
+    managed = activation_waves(read_activate_after(share / 'launch' / 'activate.py'))
     env = ros_env.workspace_env(install, ros_env.loopback_env(domain_id))
-    print(f'==> starting {SYSTEM} (ROS_DOMAIN_ID={domain_id}, DDS on loopback)')
+    print(f'==> starting {system} (ROS_DOMAIN_ID={domain_id}, DDS on loopback)')
     with contextlib.ExitStack() as stack:
         processes = {}
         for node in nodes:
@@ -51,15 +55,16 @@ def run_system(domain_id: int, seconds: float) -> None:
             processes[node.name] = stack.enter_context(
                 ros_env.background(node.command(install), env=env))
         driver = stack.enter_context(LifecycleDriver(domain_id))
-        for node in nodes:
-            for transition in ('configure', 'activate'):
+        order = [by_name[name] for wave in managed for name in wave]
+        for transition in ('configure', 'activate'):
+            for node in order:
                 ok = driver.transition(node.fqn, transition)
                 print(f'==> {transition} {node.fqn}: {"ok" if ok else "FAILED"}')
                 if not ok:
                     sys.exit(f'{node.fqn} failed to {transition}')
         print(f'==> running for {seconds:g} s', flush=True)
         time.sleep(seconds)
-        for node in nodes:
+        for node in reversed(order):
             driver.transition(node.fqn, 'deactivate')
         for name, process in processes.items():
             print(f'==> output of {name}')
@@ -71,13 +76,15 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--seconds', type=float, default=4.0,
                         help='how long the system runs (default: 4)')
+    parser.add_argument('--system', default='pubsub_system',
+                        help='the system package to run (default: pubsub_system)')
     parser.add_argument('--no-build', action='store_true',
                         help='run what test_workspace/install holds')
     args = parser.parse_args()
     domain_id = ros_env.free_domain_id()
     if not args.no_build:
         build(domain_id)
-    run_system(domain_id, args.seconds)
+    run_system(args.system, domain_id, args.seconds)
 
 
 if __name__ == '__main__':

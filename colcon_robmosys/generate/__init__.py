@@ -66,6 +66,18 @@ def user_file_problems(user_file: UserFile, path: Path) -> list[Diagnostic]:
             for name in user_file.required_functions if name not in defined]
 
 
+def _with_skeleton_path(diagnostic: Diagnostic, plan: PackagePlan,
+                        out_dir: Path) -> Diagnostic:
+    """Add where the skeleton a message names was written."""
+    for user_file in plan.user_files:
+        if user_file.skeleton_path and \
+                f'skeleton {user_file.skeleton_path} ' in diagnostic.message:
+            return Diagnostic(
+                diagnostic.location, f'{diagnostic.message}: '
+                f'{out_dir / user_file.skeleton_path}', diagnostic.severity)
+    return diagnostic
+
+
 def _cpp_header_problems(user_file: UserFile, path: Path,
                          text: str) -> list[Diagnostic]:
     """Check that a C++ header declares the class and functions of the model.
@@ -139,6 +151,14 @@ def generate_package(plan: PackagePlan, out_dir: Path) -> GenerationReport:
         problems += user_file_problems(user_file, source)
         outputs[user_file.package_path] = (source.read_bytes(), False)
     if problems:
+        problems = [_with_skeleton_path(d, plan, out_dir) for d in problems]
+        for user_file in plan.user_files:
+            # an error that points at a skeleton finds it up to date
+            path = out_dir / user_file.skeleton_path
+            if user_file.skeleton_path in outputs and \
+                    any(str(path) in d.message for d in problems):
+                data, executable = outputs[user_file.skeleton_path]
+                write_generated(path, data, executable=executable)
         raise RobmosysError(problems)
 
     report = GenerationReport()

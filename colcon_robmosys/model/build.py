@@ -17,7 +17,7 @@ from colcon_robmosys.model.fieldtypes import (
 from colcon_robmosys.model.loader import LoadedFile, NodePath
 from colcon_robmosys.model.types import (
     Action, Activity, CommunicationObject, Component, Connection, Constant,
-    Field, FieldType, Function, Instance, InterfaceKind, Language,
+    Event, Field, FieldType, Function, Instance, Language,
     LIFECYCLE_TRANSITIONS, Maintainer, ModelFile, PackageInfo, Parameter,
     ParameterRange, Pattern, PATTERN_INTERFACE, Port, PortRef, QoS, Query,
     Role, ServiceDefinition, Structure, System)
@@ -33,12 +33,16 @@ TRIGGERING_PORTS = {
     (Pattern.QUERY, Role.PROVIDED): 'each request, returning the answer',
     (Pattern.QUERY, Role.REQUIRED): 'each answer of an asynchronous call',
     (Pattern.EVENT, Role.REQUIRED): 'each event that fires',
+    (Pattern.EVENT, Role.PROVIDED): 'the condition of each activation',
     (Pattern.ACTION, Role.PROVIDED): 'each goal, returning the result',
     (Pattern.ACTION, Role.REQUIRED): 'each result of a goal sent',
 }
 
 #: Ports that cannot work without an activity that handles their input.
 NEEDS_HANDLER = {(Pattern.QUERY, Role.PROVIDED), (Pattern.ACTION, Role.PROVIDED)}
+
+#: Ports whose activity is one function that returns something.
+ONE_FUNCTION = NEEDS_HANDLER | {(Pattern.EVENT, Role.PROVIDED)}
 
 PARAMETER_KINDS: dict[str, Callable[[Any], bool]] = {
     'bool': lambda v: isinstance(v, bool),
@@ -199,11 +203,28 @@ class FileBuilder:
             actions.append(Action(
                 name, body.get('description', ''), goal, result, feedback,
                 self.at(apath, key=True)))
-        if not (objects or queries or actions):
+        events = []
+        for name, body in raw.get('events', {}).items():
+            named('events', name)
+            epath = path + ('events', name)
+            if 'single' in ((body.get('activation') or {}).get('fields') or
+                            {}):
+                self.error(epath + ('activation', 'fields', 'single'),
+                           f"event '{name}': the activation field 'single' "
+                           'is reserved: it carries the mode of an '
+                           'activation (single or continuous)', key=True)
+            events.append(Event(
+                name, body.get('description', ''),
+                self._structure(epath + ('activation',),
+                                body.get('activation', {}), package),
+                self._structure(epath + ('event',), body.get('event', {}),
+                                package),
+                self.at(epath, key=True)))
+        if not (objects or queries or actions or events):
             self.error(path, f"service definition '{package}' defines no "
-                       'communication object, query or action')
+                       'communication object, query, action or event')
         return ServiceDefinition(info, tuple(objects), tuple(queries),
-                                 tuple(actions))
+                                 tuple(actions), tuple(events))
 
     def _field_type(self, path: NodePath, text: str, package: str,
                     what: str) -> FieldType | None:
@@ -317,7 +338,7 @@ class FileBuilder:
                                f"'{triggered_by[trigger]}'")
                 else:
                     triggered_by[trigger] = aname
-                    if (port.pattern, port.role) in NEEDS_HANDLER and \
+                    if (port.pattern, port.role) in ONE_FUNCTION and \
                             len(body['functions']) != 1:
                         self.error(apath + ('functions',),
                                    f"activity '{aname}' answers port "
@@ -375,21 +396,6 @@ class FileBuilder:
         except TypeNameError as exc:
             self.error(path + ('type',), f"port '{name}': {exc}")
             type_ = parse_interface(_strip_kind(raw['type']), kind)
-        activation = None
-        if 'activation' in raw:
-            if pattern is not Pattern.EVENT:
-                self.error(path + ('activation',), f"port '{name}': only event "
-                           "ports take an 'activation' type")
-            else:
-                try:
-                    activation = parse_interface(raw['activation'],
-                                                 InterfaceKind.MSG)
-                except TypeNameError as exc:
-                    self.error(path + ('activation',), f"port '{name}': {exc}")
-        elif pattern is Pattern.EVENT:
-            self.error(path, f"event port '{name}' needs an 'activation' type "
-                       'for the parameter a client activates it with',
-                       key=True)
         qos_raw = raw.get('qos', {})
         if qos_raw and pattern in (Pattern.QUERY, Pattern.ACTION):
             self.error(path + ('qos',), f"port '{name}': {pattern.value} ports "
@@ -399,7 +405,7 @@ class FileBuilder:
         if qos.history == 'keep_all' and qos.depth is not None:
             self.error(path + ('qos', 'depth'), f"port '{name}': 'depth' has no "
                        "meaning with history 'keep_all'")
-        return Port(name, pattern, role, type_, activation, qos,
+        return Port(name, pattern, role, type_, qos,
                     raw.get('description', ''), self.at(path, key=True))
 
     def _function(self, path: NodePath, name: str, raw: dict | None,

@@ -99,6 +99,9 @@ def _message(error: ValidationError) -> tuple[str, bool]:
         extra = sorted(set(error.instance) - set(allowed))
         hint = f" (expected one of: {', '.join(allowed)})" if allowed else ''
         return f"unknown key '{extra[0]}' in {_subject(path)}{hint}", True
+    if validator == 'not' and 'errorMessage' in error.schema:
+        # a key that was removed from the format: say where it went
+        return error.schema['errorMessage'], True
     if validator == 'required':
         missing = error.message.split("'")[1]
         return f"{_subject(path)} lacks the required key '{missing}'", False
@@ -176,6 +179,8 @@ def check_structure(loaded: LoadedFile) -> list[Diagnostic]:
                 extra = sorted(set(leaf.instance) - set(
                     leaf.schema.get('properties', {})))
                 path = tuple(path) + (extra[0],)
+            elif about_key and leaf.validator == 'not':
+                pass  # the path of the error is the key itself
             elif about_key:
                 path = tuple(path) + (leaf.instance,)
             diagnostics.append(Diagnostic(

@@ -48,7 +48,7 @@ class InterfaceKind(str, Enum):
 PATTERN_INTERFACE = {
     Pattern.PUSH: InterfaceKind.MSG,
     Pattern.SEND: InterfaceKind.MSG,
-    Pattern.EVENT: InterfaceKind.MSG,
+    Pattern.EVENT: InterfaceKind.ACTION,
     Pattern.QUERY: InterfaceKind.SRV,
     Pattern.ACTION: InterfaceKind.ACTION,
 }
@@ -194,6 +194,20 @@ class Action:
 
 
 @dataclass(frozen=True)
+class Event:
+    """An event: activation and event structures; becomes an ``.action`` file.
+
+    The goal is the activation, the result and the feedback are the event.
+    """
+
+    name: str
+    description: str
+    activation: Structure
+    event: Structure
+    location: Location
+
+
+@dataclass(frozen=True)
 class ServiceDefinition:
     """A service definition: one interface package."""
 
@@ -201,6 +215,7 @@ class ServiceDefinition:
     communication_objects: tuple[CommunicationObject, ...]
     queries: tuple[Query, ...]
     actions: tuple[Action, ...]
+    events: tuple[Event, ...] = ()
 
     @property
     def package(self) -> str:
@@ -231,7 +246,6 @@ class Port:
     pattern: Pattern
     role: Role
     type: InterfaceRef
-    activation: InterfaceRef | None
     qos: QoS
     description: str
     location: Location

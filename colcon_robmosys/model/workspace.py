@@ -216,7 +216,9 @@ class _WorkspaceChecker:
                 InterfaceKind.MSG: [c.name for c in
                                     definition.communication_objects],
                 InterfaceKind.SRV: [q.name for q in definition.queries],
-                InterfaceKind.ACTION: [a.name for a in definition.actions],
+                # an event is an action of ROS 2 too
+                InterfaceKind.ACTION: [a.name for a in definition.actions] +
+                [e.name for e in definition.events],
             }[ref.kind]
             if ref.name in names:
                 return None
@@ -236,12 +238,29 @@ class _WorkspaceChecker:
                 'a service definition of this workspace nor installed in '
                 'AMENT_PREFIX_PATH')
 
+    def _event_problem(self, port: Port) -> str | None:
+        """Tell when an event port names a plain action, or the reverse."""
+        definition = self.definitions.get(port.type.package)
+        if definition is None or port.pattern not in (Pattern.EVENT,
+                                                      Pattern.ACTION):
+            return None
+        events = {e.name for e in definition.events}
+        if port.pattern is Pattern.EVENT and port.type.name not in events:
+            return (f"'{port.type}' is an action, not an event: an event "
+                    f"port names an entry of 'events' of '{definition.package}'")
+        if port.pattern is Pattern.ACTION and port.type.name in events:
+            return (f"'{port.type}' is an event: name it from an event port "
+                    '(pattern: event)')
+        return None
+
     def _check_definition(self, definition: ServiceDefinition) -> None:
         structures = [o.structure for o in definition.communication_objects]
         structures += [s for q in definition.queries
                        for s in (q.request, q.answer)]
         structures += [s for a in definition.actions
                        for s in (a.goal, a.result, a.feedback)]
+        structures += [s for e in definition.events
+                       for s in (e.activation, e.event)]
         for structure in structures:
             for field_ in structure.fields:
                 ref = field_.type.message
@@ -254,12 +273,10 @@ class _WorkspaceChecker:
 
     def _check_component(self, component: Component) -> None:
         for port in component.ports:
-            for ref in (port.type, port.activation):
-                if ref is None:
-                    continue
-                problem = self._interface_problem(ref)
-                if problem:
-                    self.error(port.location, f"port '{port.name}': {problem}")
+            problem = self._interface_problem(port.type) or \
+                self._event_problem(port)
+            if problem:
+                self.error(port.location, f"port '{port.name}': {problem}")
         for package in component.info.depends:
             if package not in self.models and \
                     package not in self.broken_packages and \
@@ -360,11 +377,6 @@ class _WorkspaceChecker:
         if a.type != b.type:
             self.error(location, f"type mismatch: '{a.name}' exchanges "
                        f"{a.type}, '{b.name}' exchanges {b.type}")
-            return False
-        if a.activation != b.activation:
-            self.error(location, f"activation type mismatch: '{a.name}' "
-                       f"takes {a.activation}, '{b.name}' takes "
-                       f'{b.activation}')
             return False
         writer, reader = _writer_reader(a, b)
         if writer is not None and reader is not None:
@@ -509,8 +521,6 @@ def model_dependencies(model: Model) -> list[str]:
     elif isinstance(model, Component):
         for port in model.ports:
             deps.append(port.type.package)
-            if port.activation:
-                deps.append(port.activation.package)
     else:
         # an instance of the system itself is an error of its own, not a
         # dependency cycle as well
@@ -529,6 +539,9 @@ def _structures(definition: ServiceDefinition) -> Iterator[Structure]:
         yield action.goal
         yield action.result
         yield action.feedback
+    for event in definition.events:
+        yield event.activation
+        yield event.event
 
 
 def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:

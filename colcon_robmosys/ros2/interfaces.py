@@ -82,8 +82,21 @@ def plan_interfaces(definition: ServiceDefinition) -> PackagePlan:
             'parts': [_structure(s, package) for s in
                       (action.goal, action.result, action.feedback)],
         }))
+    for event in definition.events:
+        # goal = activation; result (the event that ended a single
+        # activation) and feedback (each event) = event
+        path = f'action/{event.name}.action'
+        interface_files.append(path)
+        goal = _structure(event.activation, package)
+        goal['fields'].append({'line': 'bool single false', 'comment': (
+            'true: the first event ends the activation (the result); '
+            'false: events until the client cancels')})
+        files.append(FileSpec(path, 'interfaces/interface.jinja', {
+            'banner': banner, 'description': event.description,
+            'parts': [goal] + [_structure(event.event, package)] * 2,
+        }))
     depends = model_dependencies(definition)
-    if definition.actions and 'action_msgs' not in depends:
+    if (definition.actions or definition.events) and 'action_msgs' not in depends:
         # rosidl needs it for the goal status of every action
         depends.append('action_msgs')
     files.append(FileSpec('CMakeLists.txt', 'interfaces/CMakeLists.txt.jinja', {

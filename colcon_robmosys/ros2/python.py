@@ -13,7 +13,6 @@ from pathlib import Path
 import textwrap
 from typing import Any
 
-from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.model.qos import resolve_qos
 from colcon_robmosys.model.types import (
     Activity, Component, InterfaceRef, Parameter, Pattern, Port, QoS, Role)
@@ -21,10 +20,24 @@ from colcon_robmosys.model.workspace import model_dependencies
 from colcon_robmosys.ros2.common import banner_context, package_xml_context
 from colcon_robmosys.ros2.plan import FileSpec, PackagePlan, UserFile
 
-#: The patterns and roles the Python generator maps so far.
-SUPPORTED = {
-    (Pattern.PUSH, Role.PROVIDED), (Pattern.PUSH, Role.REQUIRED),
-    (Pattern.SEND, Role.PROVIDED), (Pattern.SEND, Role.REQUIRED),
+#: What each port becomes in rclpy, by pattern and role.
+ENTITIES = {
+    (Pattern.PUSH, Role.PROVIDED): 'publisher',
+    (Pattern.SEND, Role.REQUIRED): 'publisher',
+    (Pattern.PUSH, Role.REQUIRED): 'subscription',
+    (Pattern.SEND, Role.PROVIDED): 'subscription',
+    (Pattern.QUERY, Role.PROVIDED): 'service',
+    (Pattern.QUERY, Role.REQUIRED): 'client',
+    (Pattern.ACTION, Role.PROVIDED): 'action_server',
+    (Pattern.ACTION, Role.REQUIRED): 'action_client',
+    (Pattern.EVENT, Role.PROVIDED): 'event_server',
+    (Pattern.EVENT, Role.REQUIRED): 'event_client',
+}
+
+#: The helper classes of the node module each entity needs.
+HELPERS = {
+    'client': 'QueryClient', 'action_client': 'ActionClientPort',
+    'event_server': 'EventServer', 'event_client': 'EventClient',
 }
 
 _PARAMETER_TYPES = {
@@ -52,13 +65,19 @@ def _python_names(refs: list[InterfaceRef]) -> dict[InterfaceRef, str]:
             else f'{ref.package}_{ref.name}' for ref in refs}
 
 
+#: Modules of the Python standard library the generated code imports.
+STDLIB = frozenset({'os', 'sys', 'threading', 'time', 'traceback'})
+
+
 def import_lines(modules: dict[str, set[str]]) -> list[str]:
     """Write ``from module import names`` lines, sorted as flake8 wants.
 
-    An empty set of names stands for ``import module``.
+    An empty set of names stands for ``import module``. The standard
+    library comes first, then a blank line, then the other modules.
     """
-    lines = []
+    groups: list[list[str]] = [[], []]
     for module in sorted(modules, key=str.lower):
+        lines = groups[0 if module in STDLIB else 1]
         if not modules[module]:
             lines.append(f'import {module}')
             continue
@@ -69,14 +88,18 @@ def import_lines(modules: dict[str, set[str]]) -> list[str]:
                             sorted(modules[module], key=str.lower))
             line = f'from {module} import (\n{items})'
         lines.append(line)
-    return lines
+    if groups[0] and groups[1]:
+        return groups[0] + [''] + groups[1]
+    return groups[0] + groups[1]
 
 
 def _node_imports(names: dict[InterfaceRef, str], component: Component,
-                  uses_duration: bool) -> list[str]:
+                  entities: set[str], uses_duration: bool) -> list[str]:
     modules: dict[str, set[str]] = {
         'rclpy.lifecycle': {'LifecycleNode', 'LifecycleState',
                             'TransitionCallbackReturn'},
+        'threading': set(),
+        'traceback': set(),
     }
     for ref, local in names.items():
         alias = '' if local == ref.name else f' as {local}'
@@ -90,14 +113,29 @@ def _node_imports(names: dict[InterfaceRef, str], component: Component,
                 modules['rcl_interfaces.msg'].add(
                     'IntegerRange' if parameter.type == 'int'
                     else 'FloatingPointRange')
-    if component.activities:
+    if component.activities or entities & set(HELPERS):
         modules['rclpy.callback_groups'] = {'MutuallyExclusiveCallbackGroup'}
-    if component.ports:
+    if entities & {'publisher', 'subscription', 'event_server',
+                   'event_client'}:
         modules['rclpy.qos'] = {'DurabilityPolicy', 'HistoryPolicy',
                                 'LivelinessPolicy', 'QoSProfile',
                                 'ReliabilityPolicy'}
     if uses_duration:
         modules['rclpy.duration'] = {'Duration'}
+    if entities & {'client', 'action_client', 'event_client'}:
+        modules['time'] = set()
+    if entities & {'client', 'action_client', 'event_client',
+                   'event_server'}:
+        modules['rclpy.task'] = {'Future'}
+    if entities & {'action_server', 'event_server'}:
+        modules['rclpy.action'] = {'ActionServer', 'CancelResponse',
+                                   'GoalResponse'}
+    if entities & {'action_client', 'event_client'}:
+        modules.setdefault('rclpy.action', set()).add('ActionClient')
+    if 'event_client' in entities:
+        modules['action_msgs.msg'] = {'GoalStatus'}
+    if entities & {'event_server'}:
+        modules['time'] = set()
     return import_lines(modules)
 
 
@@ -128,22 +166,46 @@ def qos_expression(qos: QoS) -> str:
 
 def _port_context(port: Port, type_name: str,
                   activity: Activity | None) -> dict[str, Any]:
-    publishes = (port.pattern, port.role) in {
-        (Pattern.PUSH, Role.PROVIDED), (Pattern.SEND, Role.REQUIRED)}
+    entity = ENTITIES[(port.pattern, port.role)]
     return {
         'name': port.name,
         'description': port.description or
         f'{port.role.value.capitalize()} {port.pattern.value} port '
         f'({port.type}).',
-        'entity': 'publisher' if publishes else 'subscription',
+        'entity': entity,
         'type': type_name,
         'type_full': str(port.type),
-        'qos': qos_expression(port.qos),
+        # query and action ports use the QoS of services and actions
+        'qos': qos_expression(port.qos) if port.pattern not in (
+            Pattern.QUERY, Pattern.ACTION) else None,
         'qos_const': f'QOS_{port.name.upper()}',
         'activity': activity.name if activity else None,
         'callback': f'_on_{port.name}',
         'functions': list(activity.functions) if activity else [],
     }
+
+
+#: The arguments and return type of a function run by a port's activity.
+def _signature(port: dict[str, Any]) -> tuple[list[str], str]:
+    entity, type_ = port['entity'], port['type']
+    if entity == 'service':
+        return ['request', 'response'], f'{type_}.Response'
+    if entity == 'action_server':
+        return ['goal_handle'], f'{type_}.Result'
+    if entity == 'event_server':
+        return ['activation', 'event'], 'bool'
+    return ['commobj'], 'None'
+
+
+def _default_body(returns: str) -> str:
+    """Return what an unimplemented function of the skeleton returns."""
+    if returns == 'bool':
+        return 'return True'
+    if returns.endswith('.Response'):
+        return 'return response'
+    if returns != 'None':
+        return f'return {returns}()'
+    return ''
 
 
 def _parameter_context(parameter: Parameter) -> dict[str, Any]:
@@ -182,8 +244,8 @@ def _doc(summary: str, text: str) -> str:
     return f'{summary}\n\n{text}' if text.strip() else summary
 
 
-def _function_context(component: Component, name: str,
-                      args: list[str]) -> dict[str, Any]:
+def _function_context(component: Component, name: str, args: list[str],
+                      returns: str) -> dict[str, Any]:
     function = next(f for f in component.functions if f.name == name)
     code = None
     if function.code is not None:
@@ -191,7 +253,8 @@ def _function_context(component: Component, name: str,
             textwrap.dedent(function.code).strip('\n'), ' ' * 8) or \
             ' ' * 8 + 'pass'
     return {
-        'name': name, 'args': args, 'code': code,
+        'name': name, 'args': args, 'code': code, 'returns': returns,
+        'default_return': _default_body(returns),
         'description': _doc(f'Run the function {name} of the model.',
                             function.description),
     }
@@ -199,14 +262,6 @@ def _function_context(component: Component, name: str,
 
 def plan_python_component(component: Component) -> PackagePlan:
     """Map a Python component to its package plan."""
-    problems = [p for p in component.ports
-                if (p.pattern, p.role) not in SUPPORTED]
-    if problems:
-        raise RobmosysError.at(
-            problems[0].location,
-            f"port '{problems[0].name}': the Python generator does not map "
-            f'{problems[0].role.value} {problems[0].pattern.value} ports '
-            'yet')
     package, cls = component.package, component.name
     banner = banner_context(component)
     refs = [p.type for p in component.ports]
@@ -214,28 +269,31 @@ def plan_python_component(component: Component) -> PackagePlan:
     by_trigger = {a.trigger: a for a in component.activities if a.trigger}
     ports = [_port_context(p, type_names[p.type], by_trigger.get(p.name))
              for p in component.ports]
+    entities = {p['entity'] for p in ports}
 
     # the arguments each function receives, decided by what runs it
-    function_args: dict[str, list[str]] = {
-        f.name: [] for f in component.functions}
+    signatures: dict[str, tuple[list[str], str]] = {
+        f.name: ([], 'None') for f in component.functions}
     for port in ports:
         for name in port['functions']:
-            function_args[name] = ['commobj']
-    functions = [_function_context(component, f.name, function_args[f.name])
+            signatures[name] = _signature(port)
+    functions = [_function_context(component, f.name, *signatures[f.name])
                  for f in component.functions]
     activities = [{
         'name': a.name, 'period': a.period, 'functions': list(a.functions),
         'description': a.description,
     } for a in component.activities if a.period is not None]
     user_functions = [f for f in functions if f['code'] is None]
-    uses_duration = 'Duration(' in ''.join(p['qos'] for p in ports)
+    uses_duration = 'Duration(' in ''.join(p['qos'] or '' for p in ports)
     has_impl = bool(user_functions)
     module_context = {
         'banner': banner, 'package': package, 'cls': cls,
         'description': component.info.description,
-        'imports': _node_imports(type_names, component, uses_duration),
+        'imports': _node_imports(type_names, component, entities,
+                                 uses_duration),
         'ports': ports, 'activities': activities,
-        'callback_groups': [a.name for a in component.activities],
+        'activity_names': [a.name for a in component.activities],
+        'helpers': sorted(HELPERS[e] for e in entities if e in HELPERS),
         'functions': functions,
         'parameters': [_parameter_context(p) for p in component.parameters],
         'lifecycle': dict(component.lifecycle),
@@ -243,12 +301,24 @@ def plan_python_component(component: Component) -> PackagePlan:
     impl_module = f'{cls}_impl'
     node_cls = f'{cls}_impl' if has_impl else cls
     node_module = impl_module if has_impl else cls
+    # the user's file imports the types its signatures name
+    used = {f['returns'].split('.')[0] for f in user_functions}
+    impl_modules: dict[str, set[str]] = {f'{package}.{cls}': {cls}}
+    for ref, local in type_names.items():
+        if local in used:
+            alias = '' if local == ref.name else f' as {local}'
+            impl_modules.setdefault(f'{ref.package}.{ref.kind.value}',
+                                    set()).add(f'{ref.name}{alias}')
+    impl_imports = import_lines(impl_modules)
     impl_context = {
         'banner': banner, 'package': package, 'cls': cls,
         'functions': user_functions, 'skeleton': False,
+        'imports': impl_imports,
     }
     depends = model_dependencies(component)
-    exec_depends = ['rclpy', 'lifecycle_msgs', 'rcl_interfaces'] + depends
+    exec_depends = ['rclpy', 'lifecycle_msgs', 'rcl_interfaces'] + (
+        ['action_msgs'] if 'event_client' in entities
+        else []) + depends
     files = [
         FileSpec(f'{package}/__init__.py', 'component_python/init.py.jinja',
                  {'banner': banner, 'cls': cls}),
@@ -257,6 +327,7 @@ def plan_python_component(component: Component) -> PackagePlan:
         FileSpec(f'{package}/{cls}_main.py', 'component_python/main.py.jinja',
                  {'banner': banner, 'cls': cls, 'node_cls': node_cls,
                   'imports': import_lines({
+                      'os': set(),
                       'rclpy': set(),
                       'rclpy.executors': {'ExternalShutdownException',
                                           'MultiThreadedExecutor'},

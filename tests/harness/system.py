@@ -93,6 +93,32 @@ def read_launch_file(path: Path, share_dir: Path) -> list[NodeLaunch]:
     return nodes
 
 
+def read_activate_after(path: Path) -> dict[str, list[str]]:
+    """Return the ``ACTIVATE_AFTER`` table of a generated activate file.
+
+    Its keys are the instances the file manages (configures and activates),
+    each with the instances that must be active before it is activated.
+    """
+    tree = ast.parse(path.read_text(encoding='utf-8'), filename=str(path))
+    assignment = next(n for n in tree.body if isinstance(n, ast.Assign) and
+                      ast.unparse(n.targets[0]) == 'ACTIVATE_AFTER')
+    return ast.literal_eval(assignment.value)
+
+
+def activation_waves(activate_after: dict[str, list[str]]) -> list[list[str]]:
+    """Return the managed instances in waves: each once those it comes after are active."""
+    waves: list[list[str]] = []
+    done: set[str] = set()
+    while len(done) < len(activate_after):
+        wave = [n for n, after in activate_after.items()
+                if n not in done and all(a in done for a in after)]
+        if not wave:
+            raise ValueError(f'activation order cycle in {activate_after}')
+        waves.append(wave)
+        done.update(wave)
+    return waves
+
+
 def wait_until(condition: Callable[[], bool], timeout: float, period: float = 0.1) -> bool:
     """Poll ``condition`` until it holds or ``timeout`` seconds pass."""
     deadline = time.monotonic() + timeout
@@ -166,6 +192,24 @@ class LifecycleDriver:
             id=getattr(Transition, f'TRANSITION_{label.upper()}'))
         return self._call(ChangeState, f'{fqn}/change_state', request, timeout).success
 
+    def watch_transitions(self, fqns: list[str]) -> list[tuple[str, str]]:
+        """Return a list that collects, in order, every state the nodes reach from now on.
+
+        Each item is (fully qualified node name, state label), from the nodes'
+        ``transition_event`` topics; :meth:`spin` delivers them.
+        """
+        from lifecycle_msgs.msg import TransitionEvent
+        reached: list[tuple[str, str]] = []
+        for fqn in fqns:
+            self.node.create_subscription(
+                TransitionEvent, f'{fqn}/transition_event',
+                lambda msg, fqn=fqn: reached.append((fqn, msg.goal_state.label)), 100)
+        return reached
+
+    def spin(self, seconds: float = 0.1) -> None:
+        """Handle what arrived for the driver's node, waiting at most ``seconds``."""
+        self.executor.spin_once(timeout_sec=seconds)
+
     def parameters(self, fqn: str, names: list[str], timeout: float = 20.0) -> dict[str, Any]:
         """Return the current values of some parameters of a node."""
         from rcl_interfaces.srv import GetParameters
@@ -173,3 +217,31 @@ class LifecycleDriver:
         request = GetParameters.Request(names=names)
         answer = self._call(GetParameters, f'{fqn}/get_parameters', request, timeout)
         return {n: parameter_value_to_python(v) for n, v in zip(names, answer.values)}
+
+    def set_parameters(self, fqn: str, values: dict[str, Any],
+                       timeout: float = 20.0) -> dict[str, tuple[bool, str]]:
+        """Set parameters one by one; return (successful, reason) per name."""
+        from rcl_interfaces.srv import SetParameters
+        from rclpy.parameter import Parameter
+        request = SetParameters.Request(parameters=[
+            Parameter(name, value=value).to_parameter_msg() for name, value in values.items()])
+        answer = self._call(SetParameters, f'{fqn}/set_parameters', request, timeout)
+        return {name: (result.successful, result.reason)
+                for name, result in zip(values, answer.results)}
+
+    def endpoints(self, fqn: str) -> dict[str, set[str]]:
+        """Return the topics and services a node has, as the ROS graph sees them now."""
+        namespace, _, name = fqn.rpartition('/')
+        namespace = namespace or '/'
+        graph = self.node
+        found = {'publishers': graph.get_publisher_names_and_types_by_node,
+                 'subscriptions': graph.get_subscriber_names_and_types_by_node,
+                 'services': graph.get_service_names_and_types_by_node,
+                 'clients': graph.get_client_names_and_types_by_node}
+        result = {}
+        for kind, query in found.items():
+            try:
+                result[kind] = {topic for topic, _ in query(name, namespace)}
+            except Exception:  # noqa: B902 - rclpy raises NodeNameNonExistentError
+                result[kind] = set()
+        return result
