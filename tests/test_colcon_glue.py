@@ -37,6 +37,8 @@ def test_colcon_list_shows_one_package_per_model(workspace):
         ('add_client', '(robmosys.component)'),
         ('add_server', '(robmosys.component)'),
         ('cpp_client', '(robmosys.component)'),
+        ('cpp_level_sensor', '(robmosys.component)'),
+        ('cpp_level_watcher', '(robmosys.component)'),
         ('cpp_publisher', '(robmosys.component)'),
         ('cpp_receiver', '(robmosys.component)'),
         ('cpp_sender', '(robmosys.component)'),
@@ -119,12 +121,12 @@ def test_generate_creates_missing_implementation_only(workspace):
     # marked as colcon marks build/: not found as packages next time
     assert (workspace / 'gen' / 'COLCON_IGNORE').is_file()
     assert sorted(p.name for p in (workspace / 'gen').iterdir() if p.is_dir()) == [
-        'add_client', 'add_server', 'cpp_client', 'cpp_publisher', 'cpp_receiver',
-        'cpp_sender', 'cpp_server', 'cpp_subscriber', 'dummy_joint_states', 'dummy_laser',
-        'dummy_map_server', 'dummy_robot_bringup', 'dummy_robot_monitor', 'example_msgs',
-        'examples_system', 'fibonacci_client', 'fibonacci_server', 'level_sensor',
-        'level_watcher', 'mixed_system', 'publisher', 'pubsub_system', 'receiver', 'sender',
-        'simple_msgs', 'subscriber']
+        'add_client', 'add_server', 'cpp_client', 'cpp_level_sensor', 'cpp_level_watcher',
+        'cpp_publisher', 'cpp_receiver', 'cpp_sender', 'cpp_server', 'cpp_subscriber',
+        'dummy_joint_states', 'dummy_laser', 'dummy_map_server', 'dummy_robot_bringup',
+        'dummy_robot_monitor', 'example_msgs', 'examples_system', 'fibonacci_client',
+        'fibonacci_server', 'level_sensor', 'level_watcher', 'mixed_system', 'publisher',
+        'pubsub_system', 'receiver', 'sender', 'simple_msgs', 'subscriber']
 
 
 def test_generate_honours_package_selection(workspace):

@@ -28,8 +28,8 @@ from harness.system import LifecycleDriver, read_launch_file, wait_until
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
-CPP_PACKAGES = ('cpp_client', 'cpp_publisher', 'cpp_receiver', 'cpp_sender', 'cpp_server',
-                'cpp_subscriber')
+CPP_PACKAGES = ('cpp_client', 'cpp_level_sensor', 'cpp_level_watcher', 'cpp_publisher',
+                'cpp_receiver', 'cpp_sender', 'cpp_server', 'cpp_subscriber')
 SYSTEM = 'mixed_system'
 
 
@@ -64,7 +64,9 @@ def test_cpp_packages_are_built_or_skipped_with_the_reason(test_workspace_built)
                 'rclcpp_components' / package
             assert registered.read_text().startswith(f'{package}::'), package
     if rclcpp_missing_reason():
-        assert 'packages had stderr output: ' + ' '.join(CPP_PACKAGES) in output
+        # colcon's summary names them among the packages with stderr output
+        summary = re.search(r'packages? had stderr output: (.*)', output)
+        assert summary and set(CPP_PACKAGES) <= set(summary.group(1).split()), output
 
 
 @contextlib.contextmanager
@@ -131,17 +133,17 @@ def test_cpp_and_python_publish_to_each_other(test_workspace_built, domain_id):
         assert process.wait(timeout=15) == 0, out['cpp_sub'].output()
 
 
-PYTHON_CLIENT = """
+PYTHON_CALL = """
 import sys
 import rclpy
-from simple_msgs.srv import CountCells
+from example_msgs.srv import AddTwoInts
 rclpy.init()
-node = rclpy.create_node('python_client')
-client = node.create_client(CountCells, sys.argv[1])
+node = rclpy.create_node('python_call')
+client = node.create_client(AddTwoInts, sys.argv[1])
 assert client.wait_for_service(timeout_sec=20), 'no service'
-future = client.call_async(CountCells.Request(width=int(sys.argv[2]), height=7))
+future = client.call_async(AddTwoInts.Request(a=int(sys.argv[2]), b=int(sys.argv[3])))
 rclpy.spin_until_future_complete(node, future, timeout_sec=20)
-print('cells', future.result().cells)
+print('sum', future.result().sum)
 node.destroy_node()
 rclpy.shutdown()
 """
@@ -149,29 +151,53 @@ rclpy.shutdown()
 
 @requires_rclcpp
 def test_cpp_server_answers_python_and_cpp_clients(test_workspace_built, domain_id):
-    """A Python client and the C++ client (blocking and asynchronous) query the C++ server."""
+    """rclpy, the generated Python client and the C++ client query the C++ server."""
     env = test_workspace_built.env(domain_id)
-    with _system(test_workspace_built, domain_id, ['server', 'client']) as (fqn, out, driver):
-        service = '/server/qCount'
+    with _system(test_workspace_built, domain_id,
+                 ['server', 'client', 'py_client']) as (fqn, out, driver):
         assert driver.transition(fqn['server'], 'configure')
 
-        def ask(width: int) -> str:
-            result = ros_env.run([sys.executable, '-c', PYTHON_CLIENT, service, str(width)],
-                                 env=env, timeout=60)
+        def call(a: int, b: int) -> str:
+            result = ros_env.run([sys.executable, '-c', PYTHON_CALL, '/server/qAdd', str(a),
+                                  str(b)], env=env, timeout=60)
             assert result.returncode == 0, result.stderr
             return result.stdout.strip()
 
         # inactive: the server answers the default response and warns
-        assert ask(3) == 'cells 0'
+        assert call(3, 4) == 'sum 0'
         assert 'while inactive' in out['server'].output()
         assert driver.transition(fqn['server'], 'activate')
-        assert ask(3) == 'cells 21'
+        assert call(3, 4) == 'sum 7'
 
-        _bring_up(driver, [fqn['client']])
-        assert wait_until(lambda: 'async answer: 28 cells' in out['client'].output(),
-                          timeout=20), out['client'].output()
-        assert 'blocking answer: 21 cells' in out['client'].output()
-        assert 'no answer' not in out['client'].output()
+        # the blocking call from a C++ activity does not deadlock the executor
+        _bring_up(driver, [fqn['client'], fqn['py_client']])
+        for client in ('client', 'py_client'):
+            assert wait_until(lambda: 'callback answer: 2002' in out[client].output(),
+                              timeout=20), out[client].output()
+            assert 'blocking answer: 1 + 1000 = 1001' in out[client].output()
+            assert 'no answer' not in out[client].output()
+
+
+EVENTS = re.compile(r'event: level (\d+)')
+
+
+@requires_rclcpp
+def test_events_between_cpp_and_python(test_workspace_built, domain_id):
+    """C++ sensor -> Python watcher and Python sensor -> C++ watcher, conditions held."""
+    with _system(test_workspace_built, domain_id,
+                 ['cpp_sensor', 'py_watcher', 'py_sensor', 'cpp_watcher']) as (fqn, out, driver):
+        _bring_up(driver, [fqn['cpp_sensor'], fqn['py_sensor']])
+        _bring_up(driver, [fqn['py_watcher'], fqn['cpp_watcher']])
+        for watcher, threshold in (('py_watcher', 16), ('cpp_watcher', 17)):
+            assert wait_until(lambda: len(EVENTS.findall(out[watcher].output())) >= 6,
+                              timeout=30), out[watcher].output()
+            levels = {int(level) for level in EVENTS.findall(out[watcher].output())}
+            assert levels and min(levels) >= threshold, (watcher, levels)
+            # the single activation ended with its one event
+            assert wait_until(lambda: re.search(
+                r'single activation: 1 event\(s\), ended: (True|true)',
+                out[watcher].output()) is not None, timeout=10), out[watcher].output()
+        assert re.search(r'level \d+ notified to [12]', out['cpp_sensor'].output())
 
 
 @requires_rclcpp

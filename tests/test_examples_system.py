@@ -13,6 +13,8 @@ from __future__ import annotations
 import contextlib
 from dataclasses import dataclass
 import re
+import signal
+import subprocess
 from typing import Iterator
 
 import pytest
@@ -66,6 +68,9 @@ def examples(test_workspace_built) -> Iterator[Running]:
                      for name, node in nodes.items()}
         driver = stack.enter_context(LifecycleDriver(domain_id))
         running = Running(nodes, processes, driver)
+        # every node up and discovered before the first transition
+        for name in ACTIVATION_ORDER:
+            assert driver.state(nodes[name].fqn) == 'unconfigured'
         for name in ACTIVATION_ORDER:
             assert driver.transition(nodes[name].fqn, 'configure'), running.output(name)
         for name in ACTIVATION_ORDER:
@@ -133,6 +138,36 @@ def test_parameters_through_the_parameter_services(examples):
     examples.wait_for('receiver', r'received hi there (\d+) value \d+\.0\b', 1)
 
 
+def test_ports_have_the_qos_of_the_model(examples):
+    """The DDS endpoints, as discovery reports them, have the policies of the model."""
+    from rclpy.qos import DurabilityPolicy, LivelinessPolicy, ReliabilityPolicy
+    graph = examples.driver.node
+
+    def endpoints(topic: str, kind: str) -> dict:
+        found = graph.get_publishers_info_by_topic(topic) if kind == 'writer' \
+            else graph.get_subscriptions_info_by_topic(topic)
+        return {info.node_name: info.qos_profile for info in found}
+
+    topic = '/examples/receiver/sText'
+    assert wait_until(lambda: 'sender' in endpoints(topic, 'writer') and
+                      'receiver' in endpoints(topic, 'reader'), 10)
+    writer, reader = endpoints(topic, 'writer')['sender'], endpoints(topic, 'reader')['receiver']
+    assert writer.reliability == reader.reliability == ReliabilityPolicy.RELIABLE
+    assert writer.durability == reader.durability == DurabilityPolicy.VOLATILE
+    assert writer.liveliness == reader.liveliness == LivelinessPolicy.AUTOMATIC
+    assert (writer.deadline.nanoseconds, reader.deadline.nanoseconds) == (10**9, 2 * 10**9)
+    assert writer.lifespan.nanoseconds == 10 * 10**9
+    assert (writer.liveliness_lease_duration.nanoseconds,
+            reader.liveliness_lease_duration.nanoseconds) == (3 * 10**9, 5 * 10**9)
+    # the qos of an event port is that of its events: the sensor_data profile here
+    feedback = '/examples/level_sensor/eLevel/_action/feedback'
+    assert wait_until(lambda: 'level_watcher' in endpoints(feedback, 'reader'), 10)
+    assert endpoints(feedback, 'reader')['level_watcher'].reliability == \
+        ReliabilityPolicy.BEST_EFFORT
+    assert endpoints(feedback, 'writer')['level_sensor'].reliability == \
+        ReliabilityPolicy.RELIABLE
+
+
 def test_inactive_servers_refuse_and_cleanup_ends_activations(examples):
     """Runs last: it takes the servers down."""
     driver, nodes = examples.driver, examples.nodes
@@ -161,7 +196,7 @@ def test_lifecycle_of_a_sender_and_a_receiver(test_workspace_built):
     """Nothing runs unless active; timers stop and resume; cleanup releases the ports."""
     nodes = launched_nodes(test_workspace_built)
     domain_id = free_domain_id()
-    env = test_workspace_built.env(domain_id)
+    env = {**test_workspace_built.env(domain_id), 'PYTHONFAULTHANDLER': '1'}
     install = test_workspace_built.install
     with contextlib.ExitStack() as stack:
         sender = stack.enter_context(background(nodes['sender'].command(install), env=env))
@@ -224,3 +259,17 @@ def test_lifecycle_of_a_sender_and_a_receiver(test_workspace_built):
         # and configure creates them again
         assert driver.transition(s, 'configure')
         assert wait_until(lambda: topic in driver.endpoints(s)['publishers'], 10)
+
+        # SIGTERM and SIGINT end the nodes cleanly
+        for process, signal_ in ((sender, signal.SIGTERM), (receiver, signal.SIGINT)):
+            before = len(process.output())
+            process.proc.send_signal(signal_)
+            try:
+                process.proc.wait(timeout=30)
+            except subprocess.TimeoutExpired:
+                # PYTHONFAULTHANDLER: SIGABRT prints where every thread is
+                process.proc.send_signal(signal.SIGABRT)
+                wait_until(lambda: process.proc.poll() is not None, 5)
+                pytest.fail(f'{signal_.name} did not end the node:\n{process.output()}')
+            assert process.proc.returncode == 0, process.output()
+            assert 'Traceback' not in process.output()[before:], process.output()

@@ -28,11 +28,13 @@ from colcon_robmosys.ros2.cpp import string_lines
 from conftest import TEST_WORKSPACE
 
 GOLDEN = Path(__file__).resolve().parent / 'golden'
+#: A component with every port and parameter kind, beside the examples.
+CPP_MODELS = Path(__file__).resolve().parent / 'models' / 'cpp'
 UPDATE = os.environ.get('ROBMOSYS_UPDATE_GOLDEN') == '1'
 
 
-def _load(src: Path):
-    result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
+def _load(*src: Path):
+    result = load_workspace(find_model_files(list(src)), InterfaceIndex([Path(sys.prefix)]))
     result.raise_errors()
     return result.workspace
 
@@ -42,18 +44,25 @@ def _cpp_packages(workspace) -> list[str]:
                   if isinstance(m, Component) and m.language is Language.CPP)
 
 
-CPP_PACKAGES = _cpp_packages(_load(TEST_WORKSPACE / 'src'))
+def _copy_models(src: Path) -> Path:
+    shutil.copytree(TEST_WORKSPACE / 'src', src, dirs_exist_ok=True)
+    shutil.copytree(CPP_MODELS, src / 'cpp_models')
+    return src
+
+
+CPP_PACKAGES = _cpp_packages(_load(TEST_WORKSPACE / 'src', CPP_MODELS))
 
 
 @pytest.fixture(scope='module')
 def generated_cpp(tmp_path_factory) -> Path:
-    """Generate the C++ packages of test_workspace (a copy) into a folder."""
-    src = tmp_path_factory.mktemp('src')
-    shutil.copytree(TEST_WORKSPACE / 'src', src, dirs_exist_ok=True)
-    workspace = _load(src)
+    """Generate the C++ packages of test_workspace and tests/models/cpp (copies)."""
+    workspace = _load(_copy_models(tmp_path_factory.mktemp('src')))
     out = tmp_path_factory.mktemp('generated_cpp')
     for package in _cpp_packages(workspace):
-        generate_package(plan_package(workspace, package), out / package)
+        plan = plan_package(workspace, package)
+        # all_ports comes without code of its own: the skeleton is its code
+        create_missing_user_files(plan)
+        generate_package(plan, out / package)
     return out
 
 
@@ -63,8 +72,9 @@ def _tree(root: Path) -> dict[str, bytes]:
 
 
 def test_examples_hold_every_cpp_pattern():
-    assert CPP_PACKAGES == ['cpp_client', 'cpp_publisher', 'cpp_receiver',
-                            'cpp_sender', 'cpp_server', 'cpp_subscriber']
+    assert CPP_PACKAGES == ['all_ports', 'cpp_client', 'cpp_level_sensor', 'cpp_level_watcher',
+                            'cpp_publisher', 'cpp_receiver', 'cpp_sender', 'cpp_server',
+                            'cpp_subscriber']
 
 
 @pytest.mark.parametrize('package', CPP_PACKAGES)
@@ -131,7 +141,7 @@ def _linter(name: str) -> str:
 def test_ament_cpp_linters_pass(generated_cpp, linter):
     """Every generated C++ file, skeletons and the example's own files included."""
     files = _cpp_files(generated_cpp)
-    assert len(files) >= 6 * 5
+    assert len(files) >= 9 * 5
     result = subprocess.run([_linter(linter), *map(str, files)], capture_output=True,
                             text=True, timeout=300, env=_linter_env())
     assert result.returncode == 0, result.stdout + result.stderr
@@ -214,19 +224,6 @@ def test_function_named_only_in_a_comment_does_not_count(tmp_path):
         generate_package(plan_package(_load(src), 'cpp_receiver'), tmp_path / 'out')
 
 
-def test_port_the_generator_does_not_map_gives_a_clear_error(tmp_path):
-    src = _component_src(tmp_path)
-    model = src / 'cpp_receiver' / 'robmosys.yaml'
-    model.write_text(model.read_text().replace(
-        '    activities:\n',
-        '      eAlarm: {pattern: event, role: required, type: example_msgs/LevelAbove}\n'
-        '    activities:\n'))
-    with pytest.raises(RobmosysError) as error:
-        plan_package(_load(src), 'cpp_receiver')
-    assert str(error.value).endswith(
-        "error: port 'eAlarm': the C++ generator does not map required event ports yet")
-
-
 @pytest.mark.parametrize('text', [
     'plain', 'quote " and backslash \\', 'new\nline\ttab', '"); system("rm -rf /");',
     'trigraph ??/ and ??=', 'unicode é ✓', '*/ /* // \\',
@@ -270,3 +267,34 @@ def test_long_strings_are_split_into_lines_cpplint_accepts():
     literals = [line.strip().rstrip(';') for line in lines[1:]]
     assert ''.join(_decode(literal) for literal in literals) == text
     assert string_lines('x', 'short') == ['x = "short";']
+
+
+def test_package_xml_is_valid_and_complete(generated_cpp):
+    from catkin_pkg.package import parse_package
+    for package in CPP_PACKAGES:
+        parsed = parse_package(generated_cpp / package / 'package.xml')
+        parsed.validate()
+        depends = {d.name for d in parsed.build_depends} & {d.name for d in parsed.exec_depends}
+        assert {'rclcpp', 'rclcpp_lifecycle', 'rclcpp_components', 'rcl_interfaces',
+                'lifecycle_msgs'} <= depends, package
+    depends = {d.name for d in parse_package(
+        generated_cpp / 'all_ports' / 'package.xml').build_depends}
+    assert {'rclcpp_action', 'all_ports_msgs'} <= depends
+
+
+def test_rclcpp_is_looked_up_where_find_package_looks(tmp_path):
+    """The ament index of a prefix, or a CMake config file, counts as installed."""
+    from colcon_robmosys.task.build import missing_prefix_packages
+    ament, cmake, workspace = tmp_path / 'ament', tmp_path / 'cmake', tmp_path / 'ws'
+    (ament / 'share' / 'ament_index' / 'resource_index' / 'packages').mkdir(parents=True)
+    (ament / 'share' / 'ament_index' / 'resource_index' / 'packages' / 'rclcpp').touch()
+    (cmake / 'share' / 'rclcpp_lifecycle' / 'cmake').mkdir(parents=True)
+    (cmake / 'share' / 'rclcpp_lifecycle' / 'cmake' / 'rclcpp_lifecycleConfig.cmake').touch()
+    (workspace / 'share' / 'rclcpp_components' / 'cmake').mkdir(parents=True)
+    (workspace / 'share' / 'rclcpp_components' / 'cmake' /
+     'rclcpp_components-config.cmake').touch()
+    names = ['rclcpp', 'rclcpp_lifecycle', 'rclcpp_components']
+    environ = {'AMENT_PREFIX_PATH': str(ament), 'CMAKE_PREFIX_PATH': str(cmake)}
+    assert missing_prefix_packages(names, [], environ=environ) == ['rclcpp_components']
+    assert missing_prefix_packages(names, [str(workspace)], environ=environ) == []
+    assert missing_prefix_packages(names, [], environ={}) == names

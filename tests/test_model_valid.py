@@ -380,12 +380,12 @@ def test_example_workspace(tmp_path):
     assert result.diagnostics == []
     workspace = result.workspace
     assert sorted(m.package for m in workspace.models) == [
-        'add_client', 'add_server', 'cpp_client', 'cpp_publisher', 'cpp_receiver',
-        'cpp_sender', 'cpp_server', 'cpp_subscriber', 'dummy_joint_states', 'dummy_laser',
-        'dummy_map_server', 'dummy_robot_bringup', 'dummy_robot_monitor', 'example_msgs',
-        'examples_system', 'fibonacci_client', 'fibonacci_server', 'level_sensor',
-        'level_watcher', 'mixed_system', 'publisher', 'pubsub_system', 'receiver', 'sender',
-        'simple_msgs', 'subscriber']
+        'add_client', 'add_server', 'cpp_client', 'cpp_level_sensor', 'cpp_level_watcher',
+        'cpp_publisher', 'cpp_receiver', 'cpp_sender', 'cpp_server', 'cpp_subscriber',
+        'dummy_joint_states', 'dummy_laser', 'dummy_map_server', 'dummy_robot_bringup',
+        'dummy_robot_monitor', 'example_msgs', 'examples_system', 'fibonacci_client',
+        'fibonacci_server', 'level_sensor', 'level_watcher', 'mixed_system', 'publisher',
+        'pubsub_system', 'receiver', 'sender', 'simple_msgs', 'subscriber']
 
     msgs = _model(workspace, 'simple_msgs', ServiceDefinition)
     ogm, map_ = msgs.communication_objects

@@ -5,8 +5,10 @@
 
 The layout is the reference's (Papyrus for Robotics): ``src-gen/<pkg>/`` holds
 the generated class and main, ``src-skel/<pkg>/`` the regenerated skeleton of
-the implementation, ``src/<pkg>/<Component>_impl.{h,cpp}`` (next to the
-model) the user's implementation, which derives from the generated class.
+the implementation, ``src/<pkg>/<Component>_impl.{hpp,cpp}`` (next to
+the model) the user's implementation, which derives from the generated class.
+Headers are ``.hpp`` where the reference has ``.h``: ament_uncrustify reads
+``.h`` files as C.
 
 The decisions live here; the templates under ``templates/component_cpp``
 only print what this module computes.
@@ -24,7 +26,8 @@ from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.generate.filters import cpp_str
 from colcon_robmosys.model.qos import resolve_qos
 from colcon_robmosys.model.types import (
-    Activity, Component, InterfaceRef, Parameter, Pattern, Port, QoS, Role)
+    Activity, Component, InterfaceKind, InterfaceRef, Parameter, Pattern, Port, QoS,
+    Role)
 from colcon_robmosys.model.workspace import model_dependencies
 from colcon_robmosys.ros2.common import banner_context, package_xml_context
 from colcon_robmosys.ros2.plan import FileSpec, PackagePlan, UserFile
@@ -42,7 +45,14 @@ ENTITIES = {
     (Pattern.QUERY, Role.REQUIRED): 'client',
     (Pattern.ACTION, Role.PROVIDED): 'action_server',
     (Pattern.ACTION, Role.REQUIRED): 'action_client',
+    (Pattern.EVENT, Role.PROVIDED): 'event_server',
+    (Pattern.EVENT, Role.REQUIRED): 'event_client',
 }
+
+#: The entities that hold the ports header's classes, and which need actions.
+_PORT_CLASSES = {'client', 'action_client', 'event_server', 'event_client'}
+_ACTIONS = {'action_server', 'action_client', 'event_server', 'event_client'}
+_TOPICS = {'publisher', 'subscription', 'event_server', 'event_client'}
 
 #: model type -> (C++ type, ParameterValue accessor)
 _PARAMETER_TYPES = {
@@ -197,6 +207,8 @@ def _port_context(port: Port, activity: Activity | None) -> dict[str, Any]:
         'client': f'std::shared_ptr<ports::QueryClient<{type_}>>',
         'action_server': f'rclcpp_action::Server<{type_}>::SharedPtr',
         'action_client': f'std::shared_ptr<ports::ActionClient<{type_}>>',
+        'event_server': f'std::shared_ptr<ports::EventServer<{type_}>>',
+        'event_client': f'std::shared_ptr<ports::EventClient<{type_}>>',
     }[entity]
     return {
         'name': port.name,
@@ -205,13 +217,13 @@ def _port_context(port: Port, activity: Activity | None) -> dict[str, Any]:
         'member_type': member_type,
         'description': port.description or
         f'{port.role.value.capitalize()} {port.pattern.value} port ({port.type}).',
-        'qos': qos_statements(port.qos)
-        if entity in ('publisher', 'subscription') else [],
+        # events: the QoS of the feedback topic
+        'qos': qos_statements(port.qos) if entity in _TOPICS else [],
         'activity': activity.name if activity else None,
         'functions': list(activity.functions) if activity else [],
         # clients wait for answers in a group of their own, so that a
         # blocking call from an activity never waits for its own thread
-        'own_group': entity in ('client', 'action_client'),
+        'own_group': entity in ('client', 'action_client', 'event_client'),
     }
 
 
@@ -226,6 +238,10 @@ _SIGNATURES = {
         '{type}::Result', 'const std::shared_ptr<GoalHandle_{port}> goal_handle',
         'goal_handle'),
     'action_client': ('void', 'const {type}::Result & commobj', 'commobj'),
+    # the condition of an activation
+    'event_server': ('bool', 'const {type}::Goal & activation, const {type}::Feedback & event',
+                     'activation, event'),
+    'event_client': ('void', 'const {type}::Feedback & commobj', 'commobj'),
 }
 
 
@@ -300,10 +316,10 @@ def _includes(component: Component, ports: list[dict[str, Any]]) -> dict[str, li
     ros = ['rclcpp/rclcpp.hpp', 'rclcpp_lifecycle/lifecycle_node.hpp',
            'rclcpp_lifecycle/lifecycle_publisher.hpp']
     entities = {p['entity'] for p in ports}
-    if {'action_server', 'action_client'} & entities:
+    if _ACTIONS & entities:
         ros.append('rclcpp_action/rclcpp_action.hpp')
     if 'action_server' in entities:
-        system += ['thread', 'utility', 'vector']
+        system += ['future', 'vector']
     if any(p.type.endswith('[]') for p in component.parameters):
         system.append('vector')
     ros += sorted({header_name(p.type) for p in component.ports})
@@ -323,8 +339,11 @@ def _thread_count(component: Component, ports: list[dict[str, Any]]) -> int:
 
 def plan_cpp_component(component: Component) -> PackagePlan:
     """Map a C++ component to its package plan."""
+    # an event is a ROS 2 action: an event port whose type is a message
+    # comes from a model of before events belonged to service definitions
     problems = [p for p in component.ports
-                if (p.pattern, p.role) not in ENTITIES]
+                if (p.pattern, p.role) not in ENTITIES or
+                (p.pattern is Pattern.EVENT and p.type.kind is not InterfaceKind.ACTION)]
     if problems:
         raise RobmosysError.at(
             problems[0].location,
@@ -344,8 +363,8 @@ def plan_cpp_component(component: Component) -> PackagePlan:
     user_functions = [f for f in functions if f['code'] is None]
     has_impl = bool(user_functions)
     entities = {p['entity'] for p in ports}
-    uses_actions = bool({'action_server', 'action_client'} & entities)
-    uses_ports_header = bool({'client', 'action_client'} & entities)
+    uses_actions = bool(_ACTIONS & entities)
+    uses_ports_header = bool(_PORT_CLASSES & entities)
     node_cls = f'{cls}_impl' if has_impl else cls
     node_header = f'{package}/{node_cls}.hpp'
     activities = [{
@@ -374,8 +393,10 @@ def plan_cpp_component(component: Component) -> PackagePlan:
     client_packages = list(CPP_CLIENT_PACKAGES)
     if uses_actions:
         client_packages.append('rclcpp_action')
-    build_depends = client_packages + ['rcl_interfaces'] + depends
-    exec_depends = build_depends + ['lifecycle_msgs']
+    # the parameter descriptors and the lifecycle states are used directly
+    interfaces = list(dict.fromkeys(['rcl_interfaces', 'lifecycle_msgs'] + depends))
+    build_depends = client_packages + interfaces
+    exec_depends = build_depends
     src = f'src-gen/{package}'
     files = [
         FileSpec(f'{src}/{cls}.hpp', 'component_cpp/node.hpp.jinja', context),
@@ -390,11 +411,11 @@ def plan_cpp_component(component: Component) -> PackagePlan:
         FileSpec('CMakeLists.txt', 'component_cpp/CMakeLists.txt.jinja', {
             'banner': banner, 'package': package, 'cls': cls,
             'node_cls': node_cls,
-            'find_packages': client_packages + depends,
+            'find_packages': build_depends,
             'link_targets': [f'{p}::{p}' for p in ('rclcpp', 'rclcpp_lifecycle')] +
             (['rclcpp_action::rclcpp_action'] if uses_actions else []) +
             ['rclcpp_components::component'],
-            'interface_packages': depends,
+            'interface_packages': interfaces,
             'sources': [f'{src}/{cls}.cpp'] +
             ([f'src/{package}/{cls}_impl.cpp'] if has_impl else []) +
             [f'{src}/{cls}_component.cpp'],
@@ -403,13 +424,14 @@ def plan_cpp_component(component: Component) -> PackagePlan:
             'banner': banner,
             **package_xml_context(
                 component.info, buildtool=['ament_cmake'],
-                depend=build_depends, exec_=['lifecycle_msgs'],
+                depend=build_depends,
                 test=['ament_cmake_cpplint', 'ament_cmake_uncrustify'])}),
     ]
     if uses_ports_header:
         files.append(FileSpec(f'{src}/ports.hpp', 'component_cpp/ports.hpp.jinja', {
             'banner': banner, 'package': package,
-            'query': 'client' in entities, 'action': 'action_client' in entities}))
+            'query': 'client' in entities, 'action': 'action_client' in entities,
+            'event': bool({'event_server', 'event_client'} & entities)}))
     user_files = []
     if has_impl:
         header_path, source_path = impl_source_paths(component)

@@ -20,9 +20,9 @@ public:
   using Server::Server;
 
 protected:
-  void fCount(
-    const simple_msgs::srv::CountCells::Request & request,
-    simple_msgs::srv::CountCells::Response & response) override;
+  void fAdd(
+    const example_msgs::srv::AddTwoInts::Request & request,
+    example_msgs::srv::AddTwoInts::Response & response) override;
 };
 
 }  // namespace cpp_server

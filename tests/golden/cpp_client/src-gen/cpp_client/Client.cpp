@@ -30,7 +30,7 @@ Client::Client(
 {
   cbg_Ask_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
   cbg_OnAnswer_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_qCount_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  cbg_qAdd_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
 }
 
 Client::~Client()
@@ -52,9 +52,9 @@ Client::CallbackReturn Client::on_configure(
   const rclcpp_lifecycle::State & /*state*/)
 {
   try {
-    qCount = std::make_shared<ports::QueryClient<simple_msgs::srv::CountCells>>(
-      create_client<simple_msgs::srv::CountCells>("qCount", rclcpp::ServicesQoS(), cbg_qCount_),
-      [this](const simple_msgs::srv::CountCells::Response & commobj) {
+    qAdd = std::make_shared<ports::QueryClient<example_msgs::srv::AddTwoInts>>(
+      create_client<example_msgs::srv::AddTwoInts>("qAdd", rclcpp::ServicesQoS(), cbg_qAdd_),
+      [this](const example_msgs::srv::AddTwoInts::Response & commobj) {
         if (!active_.load()) {
           return;
         }
@@ -66,9 +66,10 @@ Client::CallbackReturn Client::on_configure(
       });
     // created cancelled: the activity starts on activate
     timer_Ask_ = create_wall_timer(
-      std::chrono::nanoseconds(1000000000), [this]() {run_Ask_();},
+      std::chrono::nanoseconds(300000000), [this]() {run_Ask_();},
       cbg_Ask_);
     timer_Ask_->cancel();
+    fReset();
   } catch (const std::exception & error) {
     RCLCPP_ERROR(get_logger(), "configure failed: %s", error.what());
     release_();
@@ -170,7 +171,7 @@ void Client::release_()
     timer_Ask_->cancel();
     timer_Ask_.reset();
   }
-  qCount.reset();
+  qAdd.reset();
 }
 
 void Client::run_Ask_()
@@ -185,25 +186,9 @@ void Client::run_Ask_()
   }
 }
 
-void Client::fAsk()
+void Client::fAnswer(const example_msgs::srv::AddTwoInts::Response & commobj)
 {
-  simple_msgs::srv::CountCells::Request request;
-  request.width = 3;
-  request.height = 7;
-  try {
-    auto answer = qCount->call(request, std::chrono::seconds(2));
-    RCLCPP_INFO(
-      get_logger(), "blocking answer: %s cells", std::to_string(answer->cells).c_str());
-  } catch (const std::exception & error) {
-    RCLCPP_WARN(get_logger(), "no answer: %s", error.what());
-  }
-  request.width = 4;
-  qCount->call_async(request);
-}
-
-void Client::fAnswer(const simple_msgs::srv::CountCells::Response & commobj)
-{
-  RCLCPP_INFO(get_logger(), "async answer: %s cells", std::to_string(commobj.cells).c_str());
+  RCLCPP_INFO(get_logger(), "callback answer: %s", std::to_string(commobj.sum).c_str());
 }
 
 }  // namespace cpp_client

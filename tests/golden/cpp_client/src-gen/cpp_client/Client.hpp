@@ -14,14 +14,14 @@
 #include "rclcpp/rclcpp.hpp"
 #include "rclcpp_lifecycle/lifecycle_node.hpp"
 #include "rclcpp_lifecycle/lifecycle_publisher.hpp"
-#include "simple_msgs/srv/count_cells.hpp"
+#include "example_msgs/srv/add_two_ints.hpp"
 
 #include "cpp_client/ports.hpp"
 
 namespace cpp_client
 {
 
-/// Asks a server how many cells maps have, blocking and asynchronously.
+/// Asks for sums, blocking and asynchronously (the C++ twin of add_client).
 class Client : public rclcpp_lifecycle::LifecycleNode
 {
 public:
@@ -60,14 +60,17 @@ protected:
   CallbackReturn on_shutdown(const rclcpp_lifecycle::State & state) override;
   CallbackReturn on_error(const rclcpp_lifecycle::State & state) override;
 
-  /// Ask for 3 x 7 and wait for the answer, then ask for 4 x 7 without waiting.
-  virtual void fAsk();
+  /// Ask n + 1000 and wait for the answer, then n + 2000 without waiting.
+  virtual void fAsk() = 0;
 
-  /// Print the answer of an asynchronous call.
-  virtual void fAnswer(const simple_msgs::srv::CountCells::Response & commobj);
+  /// Log the answer of an asynchronous call.
+  virtual void fAnswer(const example_msgs::srv::AddTwoInts::Response & commobj);
 
-  /// Required query port (simple_msgs/srv/CountCells).
-  std::shared_ptr<ports::QueryClient<simple_msgs::srv::CountCells>> qCount;
+  /// Count from 1 again.
+  virtual void fReset() = 0;
+
+  /// Required query port (example_msgs/srv/AddTwoInts).
+  std::shared_ptr<ports::QueryClient<example_msgs::srv::AddTwoInts>> qAdd;
 
 private:
   /// Destroy the ports and timers created on configure.
@@ -79,7 +82,7 @@ private:
   std::atomic<bool> active_{false};
   rclcpp::CallbackGroup::SharedPtr cbg_Ask_;
   rclcpp::CallbackGroup::SharedPtr cbg_OnAnswer_;
-  rclcpp::CallbackGroup::SharedPtr cbg_qCount_;
+  rclcpp::CallbackGroup::SharedPtr cbg_qAdd_;
   rclcpp::TimerBase::SharedPtr timer_Ask_;
 };
 

@@ -5,6 +5,6 @@
 
 #include "rclcpp_components/register_node_macro.hpp"
 
-#include "cpp_client/Client.hpp"
+#include "cpp_client/Client_impl.hpp"
 
-RCLCPP_COMPONENTS_REGISTER_NODE(cpp_client::Client)
+RCLCPP_COMPONENTS_REGISTER_NODE(cpp_client::Client_impl)

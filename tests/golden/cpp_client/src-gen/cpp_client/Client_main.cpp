@@ -11,7 +11,7 @@
 #include "lifecycle_msgs/msg/state.hpp"
 #include "rclcpp/rclcpp.hpp"
 
-#include "cpp_client/Client.hpp"
+#include "cpp_client/Client_impl.hpp"
 
 /// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
@@ -20,11 +20,11 @@ int main(int argc, char * argv[])
   rclcpp::init(argc, argv);
   int status = 0;
   try {
-    auto node = std::make_shared<cpp_client::Client>();
+    auto node = std::make_shared<cpp_client::Client_impl>();
     // SIGINT or SIGTERM shut the context down; before that, the node takes
     // its shutdown transition (its on_shutdown functions run, ports are
     // released) while it can still tell the lifecycle clients
-    std::weak_ptr<cpp_client::Client> weak_node = node;
+    std::weak_ptr<cpp_client::Client_impl> weak_node = node;
     rclcpp::contexts::get_global_default_context()->add_pre_shutdown_callback(
       [weak_node]() {
         auto alive = weak_node.lock();

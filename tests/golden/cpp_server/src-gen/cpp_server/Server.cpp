@@ -50,19 +50,19 @@ Server::CallbackReturn Server::on_configure(
   const rclcpp_lifecycle::State & /*state*/)
 {
   try {
-    qCount = create_service<simple_msgs::srv::CountCells>(
-      "qCount",
+    qAdd = create_service<example_msgs::srv::AddTwoInts>(
+      "qAdd",
       [this](
-        const std::shared_ptr<simple_msgs::srv::CountCells::Request> request,
-        std::shared_ptr<simple_msgs::srv::CountCells::Response> response) {
+        const std::shared_ptr<example_msgs::srv::AddTwoInts::Request> request,
+        std::shared_ptr<example_msgs::srv::AddTwoInts::Response> response) {
         if (!active_.load()) {
           RCLCPP_WARN(
-            get_logger(), "query on the port qCount while inactive: "
+            get_logger(), "query on the port qAdd while inactive: "
             "answering with the default response");
           return;
         }
         try {
-          fCount(*request, *response);
+          fAdd(*request, *response);
         } catch (const std::exception & error) {
           RCLCPP_ERROR(get_logger(), "activity Answer failed: %s", error.what());
         }
@@ -162,7 +162,7 @@ Server::CallbackReturn Server::on_error(
 
 void Server::release_()
 {
-  qCount.reset();
+  qAdd.reset();
 }
 
 }  // namespace cpp_server

@@ -14,12 +14,12 @@
 #include "rclcpp/rclcpp.hpp"
 #include "rclcpp_lifecycle/lifecycle_node.hpp"
 #include "rclcpp_lifecycle/lifecycle_publisher.hpp"
-#include "simple_msgs/srv/count_cells.hpp"
+#include "example_msgs/srv/add_two_ints.hpp"
 
 namespace cpp_server
 {
 
-/// Answers how many cells a map of some size has.
+/// Adds two integers for whoever asks (the C++ twin of add_server).
 class Server : public rclcpp_lifecycle::LifecycleNode
 {
 public:
@@ -58,13 +58,13 @@ protected:
   CallbackReturn on_shutdown(const rclcpp_lifecycle::State & state) override;
   CallbackReturn on_error(const rclcpp_lifecycle::State & state) override;
 
-  /// Answer width times height.
-  virtual void fCount(
-    const simple_msgs::srv::CountCells::Request & request,
-    simple_msgs::srv::CountCells::Response & response) = 0;
+  /// Answer a request with the sum.
+  virtual void fAdd(
+    const example_msgs::srv::AddTwoInts::Request & request,
+    example_msgs::srv::AddTwoInts::Response & response) = 0;
 
-  /// Provided query port (simple_msgs/srv/CountCells).
-  rclcpp::Service<simple_msgs::srv::CountCells>::SharedPtr qCount;
+  /// Provided query port (example_msgs/srv/AddTwoInts).
+  rclcpp::Service<example_msgs::srv::AddTwoInts>::SharedPtr qAdd;
 
 private:
   /// Destroy the ports and timers created on configure.

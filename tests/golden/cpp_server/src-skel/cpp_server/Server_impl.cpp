@@ -12,14 +12,14 @@
 namespace cpp_server
 {
 
-// Answer width times height.
-void Server_impl::fCount(
-  const simple_msgs::srv::CountCells::Request & request,
-  simple_msgs::srv::CountCells::Response & response)
+// Answer a request with the sum.
+void Server_impl::fAdd(
+  const example_msgs::srv::AddTwoInts::Request & request,
+  example_msgs::srv::AddTwoInts::Response & response)
 {
   static_cast<void>(request);
   static_cast<void>(response);
-  RCLCPP_WARN(get_logger(), "fCount is not implemented yet");
+  RCLCPP_WARN(get_logger(), "fAdd is not implemented yet");
 }
 
 }  // namespace cpp_server

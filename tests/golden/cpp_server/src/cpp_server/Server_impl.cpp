@@ -12,15 +12,15 @@
 namespace cpp_server
 {
 
-// Answer width times height.
-void Server_impl::fCount(
-  const simple_msgs::srv::CountCells::Request & request,
-  simple_msgs::srv::CountCells::Response & response)
+// Answer a request with the sum.
+void Server_impl::fAdd(
+  const example_msgs::srv::AddTwoInts::Request & request,
+  example_msgs::srv::AddTwoInts::Response & response)
 {
-  response.cells = static_cast<uint64_t>(request.width) * request.height;
+  response.sum = request.a + request.b;
   RCLCPP_INFO(
-    get_logger(), "%u x %u: %s cells", request.width, request.height,
-    std::to_string(response.cells).c_str());
+    get_logger(), "answering %s + %s", std::to_string(request.a).c_str(),
+    std::to_string(request.b).c_str());
 }
 
 }  // namespace cpp_server
