@@ -406,6 +406,11 @@ public:
     for (const auto & activation : activations) {
       deactivate(activation);
     }
+    std::lock_guard<std::mutex> lock(state_->mutex);
+    for (const auto & activation : state_->activations) {
+      activation->goal_handle.reset();
+    }
+    state_->activations.clear();
   }
 
   /// Wait until the event server is there, at most timeout; return whether it is.
@@ -419,20 +424,37 @@ public:
   {
     activation.single = single;
     auto handle = std::make_shared<Activation>(single);
-    auto state = state_;
     {
-      std::lock_guard<std::mutex> lock(state->mutex);
-      state->activations.push_back(handle);
+      std::lock_guard<std::mutex> lock(state_->mutex);
+      state_->activations.push_back(handle);
     }
+    // the goal handle keeps these callbacks and the activation keeps the goal
+    // handle: weak references break the cycle
+    std::weak_ptr<State> weak_state = state_;
+    std::weak_ptr<Activation> weak_handle = handle;
     typename rclcpp_action::Client<ActionT>::SendGoalOptions options;
-    options.goal_response_callback = [state, handle](typename GoalHandle::SharedPtr goal) {
-        accepted(state, handle, goal);
+    options.goal_response_callback = [weak_state, weak_handle](
+      typename GoalHandle::SharedPtr goal) {
+        auto state = weak_state.lock();
+        if (state) {
+          accepted(state, weak_handle.lock(), goal);
+        }
       };
-    options.feedback_callback = [state, handle](
+    options.feedback_callback = [weak_state, weak_handle](
       typename GoalHandle::SharedPtr, const std::shared_ptr<const Event> event) {
-        notify(state, handle, *event, false);
+        auto state = weak_state.lock();
+        auto handle = weak_handle.lock();
+        if (state && handle) {
+          notify(state, handle, *event, false);
+        }
       };
-    options.result_callback = [state, handle](const typename GoalHandle::WrappedResult & result) {
+    options.result_callback = [weak_state, weak_handle](
+      const typename GoalHandle::WrappedResult & result) {
+        auto state = weak_state.lock();
+        auto handle = weak_handle.lock();
+        if (!state || !handle) {
+          return;
+        }
         if (handle->single && result.code == rclcpp_action::ResultCode::SUCCEEDED &&
           result.result)
         {
@@ -441,7 +463,7 @@ public:
         }
         handle->ended = true;
       };
-    state->client->async_send_goal(activation, options);
+    state_->client->async_send_goal(activation, options);
     return handle;
   }
 
@@ -483,7 +505,14 @@ private:
   {
     if (!goal) {
       RCLCPP_WARN(state->logger, "an activation was refused");
-      handle->ended = true;
+      if (handle) {
+        handle->ended = true;
+      }
+      return;
+    }
+    if (!handle) {
+      // nobody holds the activation any more: it ends
+      state->client->async_cancel_goal(goal);
       return;
     }
     bool ended;
