@@ -115,7 +115,15 @@ def test_events_fire_only_when_their_condition_holds(examples):
     # the single activation ended with its first event; the continuous one goes on
     examples.wait_for('level_watcher', r'single activation: 1 event\(s\), ended: True')
     assert not re.search(r'single activation: [2-9]\d* event', examples.output('level_watcher'))
-    assert {count for _, count in notified} >= {'1'}
+    # deactivated after 12 events (max_events): no event of it comes any more
+    examples.wait_for('level_watcher', r'continuous activation deactivated after 12 events')
+    wait_until(lambda: False, 0.5)
+    events = examples.output('level_watcher').count('event: level')
+    notifications = examples.output('level_sensor').count('notified')
+    wait_until(lambda: False, 1.5)
+    assert examples.output('level_watcher').count('event: level') == events
+    assert examples.output('level_sensor').count('notified') == notifications
+    assert 'never activation: 0 event(s), ended: False' in examples.output('level_watcher')
 
 
 def test_parameters_through_the_parameter_services(examples):
@@ -184,7 +192,7 @@ def test_inactive_servers_refuse_and_cleanup_ends_activations(examples):
     assert goal_service in driver.endpoints(sensor)['services']
     assert driver.transition(sensor, 'deactivate')
     assert driver.transition(sensor, 'cleanup')
-    examples.wait_for('level_watcher', r'continuous activation: \d+ event\(s\), ended: True')
+    examples.wait_for('level_watcher', r'never activation: 0 event\(s\), ended: True')
     assert wait_until(lambda: goal_service not in driver.endpoints(sensor)['services'], 10)
 
 

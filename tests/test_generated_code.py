@@ -76,6 +76,20 @@ def test_system_package_depends_on_what_it_launches(generated):
     assert {'publisher', 'subscriber', 'launch_ros', 'lifecycle_msgs'} <= exec_depends
 
 
+def test_events_and_actions_become_action_files(generated):
+    """An event: goal = activation + single, result = feedback = event."""
+    from catkin_pkg.package import parse_package
+    package = generated / 'example_msgs'
+    body = [line for line in (package / 'action' / 'LevelAbove.action').read_text().split('\n')
+            if line and not line.startswith('#')]
+    assert body == ['int32 threshold', 'bool single false', '---', 'int32 level', '---',
+                    'int32 level']
+    assert (package / 'action' / 'Fibonacci.action').is_file()
+    assert 'action_msgs' in {d.name for d in parse_package(package / 'package.xml').build_depends
+                             + parse_package(package / 'package.xml').exec_depends}
+    assert '"action/LevelAbove.action"' in (package / 'CMakeLists.txt').read_text()
+
+
 def test_every_generated_file_has_a_banner(generated):
     for path in generated.rglob('*'):
         user_copy = path.name.endswith(('_impl.py', '_impl.hpp', '_impl.cpp')) and \

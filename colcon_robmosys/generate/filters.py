@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import re
+import textwrap
 from typing import Any, Callable
 from xml.sax.saxutils import escape as _xml_escape
 
@@ -65,7 +66,14 @@ def py_docstring(text: Any, indent: int = 0) -> str:
     if not body:
         return summary
     pad = ' ' * indent
-    rest = '\n'.join(pad + line if line else '' for line in body)
+    # long lines of the model's text are wrapped to the line length of
+    # ament_flake8
+    width = max(99 - indent, 40)
+    wrapped = [part for line in body
+               for part in (textwrap.wrap(line, width, break_long_words=False,
+                                          break_on_hyphens=False)
+                            if len(line) > width else [line])]
+    rest = '\n'.join(pad + line if line else '' for line in wrapped)
     return f'\n{pad}{summary}\n\n{rest}\n{pad}'
 
 

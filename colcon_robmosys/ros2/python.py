@@ -185,8 +185,8 @@ def _port_context(port: Port, type_name: str,
     }
 
 
-#: The arguments and return type of a function run by a port's activity.
 def _signature(port: dict[str, Any]) -> tuple[list[str], str]:
+    """Return the arguments and return type of a function a port runs."""
     entity, type_ = port['entity'], port['type']
     if entity == 'service':
         return ['request', 'response'], f'{type_}.Response'
