@@ -8,17 +8,20 @@ in this process, through the library, as ``colcon build`` runs it: load and
 validate every model, plan every package, render and write it into a temporary
 folder. Prints the time per component at each N and its ratio to the time per
 component at the smallest N, which should stay near 1.00x; the same for a second
-generation with nothing changed (every file is compared, none is written).
+generation with nothing changed (every file is compared, none is written). Wall-clock
+time is what a user waits; the CPU time of this process leaves out waiting for the
+disk (every file written is synced) and for the other processes of a busy machine.
 
     make bench-generation                  # or: .venv/bin/python bench/bench_generation.py
     .venv/bin/python bench/bench_generation.py --profile 1000   # where the time goes
+    .venv/bin/python bench/bench_generation.py --tmpdir /dev/shm  # without the disk
 """
 
 from __future__ import annotations
 
 import argparse
 import cProfile
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 import pstats
 import tempfile
@@ -42,6 +45,9 @@ class Phases:
     write: float
     written: int
     unchanged: int
+    #: CPU seconds of this process for the whole generation: unlike the wall-clock
+    #: time it leaves out waiting for the disk and for other processes
+    cpu: float
 
     @property
     def total(self) -> float:
@@ -56,7 +62,7 @@ def generate_workspace(src: Path, out: Path, index: InterfaceIndex) -> Phases:
     find and load the models, validate them together, plan each package, create
     the user's missing implementation files, render and write the packages.
     """
-    start = time.perf_counter()
+    start, cpu_start = time.perf_counter(), time.process_time()
     result = load_workspace(find_model_files([src]), index)
     result.raise_errors()
     loaded = time.perf_counter()
@@ -70,81 +76,95 @@ def generate_workspace(src: Path, out: Path, index: InterfaceIndex) -> Phases:
         written += len(report.written)
         unchanged += len(report.unchanged)
     done = time.perf_counter()
-    return Phases(loaded - start, planned - loaded, done - planned, written, unchanged)
+    return Phases(loaded - start, planned - loaded, done - planned, written, unchanged,
+                  time.process_time() - cpu_start)
+
+
+def _sum(phases: Sequence[Phases]) -> Phases:
+    return Phases(*(sum(getattr(p, f) for p in phases) for f in
+                    ('load', 'plan', 'write', 'written', 'unchanged', 'cpu')))
 
 
 @dataclass
 class Samples:
-    """The generations measured at one N."""
+    """The generations measured at one N: each sample covers ``batch`` workspaces."""
 
     components: int
+    batch: int
     packages: int = 0
-    first: list[Phases] | None = None
-    again: list[Phases] | None = None
+    first: list[Phases] = field(default_factory=list)
+    again: list[Phases] = field(default_factory=list)
 
 
-def measure_once(components: int, index: InterfaceIndex) -> tuple[int, Phases, Phases]:
-    """Generate a fresh workspace of that many components twice: from nothing, then again."""
+def measure_once(components: int, batch: int,
+                 index: InterfaceIndex) -> tuple[int, Phases, Phases]:
+    """Generate ``batch`` fresh workspaces of that many components: from nothing, then again.
+
+    :returns: the packages of a workspace, and the sums of the phases of the two
+      generations of every workspace
+    """
     with tempfile.TemporaryDirectory(prefix='robmosys-bench-gen-') as tmp:
-        src, out = Path(tmp) / 'src', Path(tmp) / 'out'
-        shape = write_workspace(src, components)
-        first = generate_workspace(src, out, index)
-        again = generate_workspace(src, out, index)
+        roots = [Path(tmp) / str(b) for b in range(batch)]
+        for root in roots:
+            shape = write_workspace(root / 'src', components)
+        first = _sum([generate_workspace(r / 'src', r / 'out', index) for r in roots])
+        again = _sum([generate_workspace(r / 'src', r / 'out', index) for r in roots])
     if again.written:
         raise RuntimeError(f'a generation with nothing changed wrote {again.written} files')
     return shape.packages, first, again
 
 
-def repeats(components: int, repeat: int | None) -> int:
-    """Return how often to measure at a size: by default more often where a run is short."""
-    if repeat is not None:
-        return repeat
-    return max(3, min(20, 300 // components))
+def run(sizes: Sequence[int], repeat: int) -> list[Samples]:
+    """Measure every size, interleaved so that a change of load hits every size alike.
 
-
-def run(sizes: Sequence[int], repeat: int | None) -> list[Samples]:
-    """Measure every size, interleaved so that a change of load hits every size alike."""
+    A sample at a small N generates as many components as one at the largest N
+    (several workspaces): a sample of a tenth of a second could fit between the
+    bursts of other processes on a busy machine, where one of a minute cannot,
+    and the smallest of a few samples would favour the small sizes.
+    """
     index = ros_index()
-    measure_once(min(sizes), index)  # warm up: imports, template compilation, schema
-    samples = {n: Samples(n, first=[], again=[]) for n in sizes}
-    for round_ in range(max(repeats(n, repeat) for n in sizes)):
-        for n in sizes:
-            if round_ < repeats(n, repeat):
-                packages, first, again = measure_once(n, index)
-                entry = samples[n]
-                entry.packages = packages
-                assert entry.first is not None and entry.again is not None
-                entry.first.append(first)
-                entry.again.append(again)
+    measure_once(min(sizes), 1, index)  # warm up: imports, template compilation, schema
+    samples = {n: Samples(n, max(1, max(sizes) // n)) for n in sizes}
+    for _ in range(repeat):
+        for entry in samples.values():
+            packages, first, again = measure_once(entry.components, entry.batch, index)
+            entry.packages = packages
+            entry.first.append(first)
+            entry.again.append(again)
     return [samples[n] for n in sizes]
 
 
 def _per_component(phases: list[Phases], components: int) -> Phases:
-    """Return the fastest generation of the samples, per component, in milliseconds."""
+    """Return the fastest sample, per component, in milliseconds (CPU: the least CPU)."""
     fastest = min(phases, key=lambda p: p.total)
     scale = 1000 / components
     return Phases(fastest.load * scale, fastest.plan * scale, fastest.write * scale,
-                  fastest.written, fastest.unchanged)
+                  fastest.written, fastest.unchanged,
+                  min(p.cpu for p in phases) * scale)
 
 
 def _table(results: list[Samples], which: str) -> str:
     """Return the figures of one kind of generation, per component, with their ratios."""
     rows = []
-    base = 0.0
+    base = base_cpu = 0.0
     for entry in results:
         samples = getattr(entry, which)
         assert samples is not None
-        fastest = _per_component(samples, entry.components)
+        fastest = _per_component(samples, entry.components * entry.batch)
         base = base or fastest.total
-        files = fastest.written if which == 'first' else fastest.unchanged
+        base_cpu = base_cpu or fastest.cpu
+        files = (fastest.written if which == 'first' else fastest.unchanged) // entry.batch
         rows.append([
-            entry.components, entry.packages, files, len(samples),
+            entry.components, entry.packages, files, f'{len(samples)} x {entry.batch}',
             f'{fastest.load:.2f}', f'{fastest.plan:.3f}', f'{fastest.write:.2f}',
             f'{fastest.total:.2f}', ratio(fastest.total, base),
+            f'{fastest.cpu:.2f}', ratio(fastest.cpu, base_cpu),
         ])
     step = 'render+write' if which == 'first' else 'render+compare'
-    header = ['N components', 'packages', 'files', 'runs', 'load+validate ms/comp',
-              'plan ms/comp', f'{step} ms/comp', 'total ms/comp', 'ratio to N0']
+    header = ['N components', 'packages', 'files', 'samples x workspaces',
+              'load+validate ms/comp',
+              'plan ms/comp', f'{step} ms/comp', 'total ms/comp', 'ratio to N0',
+              'CPU ms/comp', 'CPU ratio to N0']
     return table(header, rows)
 
 
@@ -154,7 +174,7 @@ def report(results: list[Samples]) -> str:
              _table(results, 'first'), '',
              'second generation, nothing changed (every file compared, none written):',
              _table(results, 'again'), '',
-             'spread of whole first generations (s):']
+             'spread of the first generation samples (s):']
     for entry in results:
         assert entry.first is not None
         lines.append(f'  N={entry.components}: {spread([p.total for p in entry.first])}')
@@ -164,7 +184,7 @@ def report(results: list[Samples]) -> str:
 def profile(components: int, limit: int = 30) -> None:
     """Print where one generation of that size spends its time."""
     index = ros_index()
-    measure_once(10, index)
+    measure_once(10, 1, index)
     profiler = cProfile.Profile()
     with tempfile.TemporaryDirectory(prefix='robmosys-bench-gen-') as tmp:
         src, out = Path(tmp) / 'src', Path(tmp) / 'out'
@@ -180,17 +200,20 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     parser.add_argument('--sizes', type=int, nargs='+', default=[10, 100, 1000],
                         help='numbers of components (default: 10 100 1000)')
-    parser.add_argument('--repeat', type=int,
-                        help='measurements per size; the fastest counts (default: 3, and up '
-                        'to 20 for sizes under 100)')
+    parser.add_argument('--repeat', type=int, default=3,
+                        help='samples per size; the fastest counts (default: 3)')
     parser.add_argument('--profile', type=int, metavar='N',
                         help='profile one generation of N components instead')
+    parser.add_argument('--tmpdir', type=Path,
+                        help='where to write the workspaces (default: the system temp folder)')
     args = parser.parse_args(argv)
+    if args.tmpdir:
+        tempfile.tempdir = str(args.tmpdir)
     if args.profile:
         profile(args.profile)
         return 0
     print_machine('generation scaling: time per component at N components vs at '
-                  f'N0={min(args.sizes)}')
+                  f'N0={min(args.sizes)}, written below {tempfile.gettempdir()}')
     results = run(sorted(args.sizes), args.repeat)
     print(report(results))
     print_end()

@@ -14,6 +14,9 @@ services, in alternation. Two loads:
 - latency: one message per period (100 Hz); latency = receive time - stamp;
 - throughput: ``--burst`` messages per period; rates of sending and of receiving.
 
+Under both, the CPU time each process uses per message: on a busy machine rates and
+latencies follow the load of other processes, CPU time per message much less.
+
 Prints generated / hand-written ratios for each figure. C++ is compared where
 rclcpp exists; here it is skipped with the reason.
 
@@ -26,6 +29,7 @@ import argparse
 import contextlib
 from dataclasses import dataclass
 import json
+import os
 from pathlib import Path
 import statistics
 import sys
@@ -115,6 +119,11 @@ class Run:
     received_rate: float
     received: int
     latency_us: dict[str, float]
+    #: CPU time (user + system) of the talker per message sent and of the listener
+    #: per message received, over the measured seconds: unlike rates and latencies,
+    #: it hardly depends on what else the machine runs
+    cpu_per_sent_us: float
+    cpu_per_received_us: float
 
 
 def write_models(src: Path) -> None:
@@ -161,6 +170,21 @@ def _report(output: str, role: str) -> dict[str, Any] | None:
     return None
 
 
+def group_cpu_seconds(pgid: int) -> float:
+    """Return the CPU seconds (user + system) the live processes of a process group used."""
+    ticks = 0
+    for stat in Path('/proc').glob('[0-9]*/stat'):
+        try:
+            text = stat.read_text()
+        except OSError:
+            continue  # gone meanwhile
+        # after the command name in parentheses: state, ppid, pgrp, ..., utime, stime
+        fields = text[text.rindex(')') + 2:].split()
+        if int(fields[2]) == pgid:
+            ticks += int(fields[11]) + int(fields[12])
+    return ticks / os.sysconf('SC_CLK_TCK')
+
+
 def run_pair(cmds: dict[str, list[str]], base_env: dict[str, str], burst: int,
              seconds: float, warmup: float) -> Run:
     """Run one pair: configure, activate, let it work, deactivate, read its reports."""
@@ -179,7 +203,14 @@ def run_pair(cmds: dict[str, list[str]], base_env: dict[str, str], burst: int,
             transition(role, 'configure')
         for role in ('listener', 'talker'):
             transition(role, 'activate')
-        time.sleep(warmup + seconds)
+        time.sleep(warmup)
+        # each process leads a process group of its own (ros_env.background)
+        cpu_start = {role: group_cpu_seconds(p.proc.pid) for role, p in processes.items()}
+        start = time.perf_counter()
+        time.sleep(seconds)
+        cpu = {role: group_cpu_seconds(p.proc.pid) - cpu_start[role]
+               for role, p in processes.items()}
+        measured = time.perf_counter() - start
         transition('talker', 'deactivate')
         time.sleep(0.3)  # messages in flight
         transition('listener', 'deactivate')
@@ -200,12 +231,14 @@ def run_pair(cmds: dict[str, list[str]], base_env: dict[str, str], burst: int,
     sent_span = (talker['last'] - talker['first']) / 1e9
     received_span = (listener['last'] - listener['start']) / 1e9
     quantiles = statistics.quantiles(latencies, n=100, method='inclusive')
+    sent_rate = (talker['sent'] - burst) / sent_span if sent_span > 0 else 0.0
+    received_rate = (len(latencies) - 1) / received_span if received_span > 0 else 0.0
     return Run(
-        sent_rate=(talker['sent'] - burst) / sent_span if sent_span > 0 else 0.0,
-        received_rate=(len(latencies) - 1) / received_span if received_span > 0 else 0.0,
-        received=len(latencies),
+        sent_rate=sent_rate, received_rate=received_rate, received=len(latencies),
         latency_us={'p50': quantiles[49] / 1e3, 'p90': quantiles[89] / 1e3,
-                    'p99': quantiles[98] / 1e3, 'max': latencies[-1] / 1e3})
+                    'p99': quantiles[98] / 1e3, 'max': latencies[-1] / 1e3},
+        cpu_per_sent_us=1e6 * cpu['talker'] / max(sent_rate * measured, 1),
+        cpu_per_received_us=1e6 * cpu['listener'] / max(received_rate * measured, 1))
 
 
 def cpp_skip_reason() -> str:
@@ -234,8 +267,12 @@ METRICS = (  # mode, label, key, higher is better
     ('latency', 'latency p50 (us)', 'p50', False),
     ('latency', 'latency p90 (us)', 'p90', False),
     ('latency', 'latency p99 (us)', 'p99', False),
+    ('latency', 'talker CPU us/message sent', 'cpu_per_sent_us', False),
+    ('latency', 'listener CPU us/message received', 'cpu_per_received_us', False),
     ('throughput', 'messages sent/s', 'sent_rate', True),
     ('throughput', 'messages received/s', 'received_rate', True),
+    ('throughput', 'talker CPU us/message sent', 'cpu_per_sent_us', False),
+    ('throughput', 'listener CPU us/message received', 'cpu_per_received_us', False),
 )
 
 
@@ -297,7 +334,8 @@ def main(argv: Sequence[str] | None = None) -> int:
                     runs.setdefault((mode, kind), []).append(run)
                     print(f'  round {round_ + 1}, {mode}, {kind}: {run.received} received, '
                           f'p50 {run.latency_us["p50"]:.0f} us, '
-                          f'{run.received_rate:.0f}/s received', flush=True)
+                          f'{run.received_rate:.0f}/s received, listener CPU '
+                          f'{run.cpu_per_received_us:.0f} us/message', flush=True)
     print(report(runs, args.burst))
     print(f'C++: skipped: {cpp_skip_reason()}')
     print_end()

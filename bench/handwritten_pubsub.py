@@ -19,9 +19,12 @@ import time
 import rclpy
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
-from rclpy.lifecycle import LifecycleNode, LifecycleState, TransitionCallbackReturn
+from rclpy.lifecycle import LifecycleNode, LifecyclePublisher, LifecycleState
+from rclpy.lifecycle import TransitionCallbackReturn
 from rclpy.qos import (
     DurabilityPolicy, HistoryPolicy, LivelinessPolicy, QoSProfile, ReliabilityPolicy)
+from rclpy.subscription import Subscription
+from rclpy.timer import Timer
 from std_msgs.msg import Header
 
 PERIOD = 0.01
@@ -39,8 +42,8 @@ class Talker(LifecycleNode):
         self.declare_parameter('burst', 1)
         self.declare_parameter('payload', 0)
         self._group = MutuallyExclusiveCallbackGroup()
-        self.pSample = None
-        self._timer = None
+        self.pSample: LifecyclePublisher[Header] | None = None
+        self._timer: Timer | None = None
         self._active = False
 
     def on_configure(self, state: LifecycleState) -> TransitionCallbackReturn:
@@ -59,12 +62,14 @@ class Talker(LifecycleNode):
         """Start publishing."""
         result = super().on_activate(state)
         self._active = True
+        assert self._timer is not None
         self._timer.reset()
         return result
 
     def on_deactivate(self, state: LifecycleState) -> TransitionCallbackReturn:
         """Stop publishing and report how much was sent."""
         self._active = False
+        assert self._timer is not None
         self._timer.cancel()
         result = super().on_deactivate(state)
         print('BENCH talker ' + json.dumps(
@@ -91,7 +96,7 @@ class Talker(LifecycleNode):
             self.pSample = None
 
     def _publish(self) -> None:
-        if not self._active:
+        if not self._active or self.pSample is None:
             return
         for _ in range(self.burst):
             now = self.now_ns()
@@ -110,7 +115,7 @@ class Listener(LifecycleNode):
         super().__init__('Listener')
         self.declare_parameter('warmup', 0.5)
         self._group = MutuallyExclusiveCallbackGroup()
-        self.rSample = None
+        self.rSample: Subscription[Header] | None = None
         self._active = False
 
     def on_configure(self, state: LifecycleState) -> TransitionCallbackReturn:

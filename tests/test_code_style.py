@@ -30,6 +30,7 @@ def test_mypy():
     pytest.importorskip('mypy', reason='mypy is installed by `make test`')
     result = subprocess.run(
         [sys.executable, '-m', 'mypy', '--config-file', str(REPO / 'setup.cfg'),
-         '--cache-dir', os.devnull, 'colcon_robmosys'],
-        cwd=REPO, capture_output=True, text=True, timeout=300)
+         '--cache-dir', os.devnull, 'colcon_robmosys', 'bench'],
+        cwd=REPO, capture_output=True, text=True, timeout=300,
+        env={**os.environ, 'MYPYPATH': str(REPO / 'tests')})
     assert result.returncode == 0, result.stdout + result.stderr
