@@ -4,6 +4,8 @@
 
 from __future__ import annotations
 
+import ast
+import json
 from pathlib import Path
 import shutil
 import subprocess
@@ -168,3 +170,67 @@ def test_integer_override_of_a_double_parameter_is_written_as_double(tmp_path):
     assert yaml.safe_load(params)['/publisher']['ros__parameters'] == \
         {'indoor': True, 'noOfScans': 3, 'gain': 2.0}
     assert 'gain: 2.0' in params
+
+
+LONG_TEXT = ('A sentence long enough to pass the line length of ament_flake8 on its own, '
+             'with "quotes", \'apostrophes\' and a backslash \\ in it')
+LONG_TEXTS_MODEL = f"""\
+robmosys: 1
+components:
+  - name: Verbose
+    package: verbose
+    language: python
+    description: {json.dumps(LONG_TEXT + ' (the first line of the description)')}
+    license: Apache-2.0
+    maintainers: [{{name: Example, email: example@example.com}}]
+    parameters:
+      label: {{type: string, default: {json.dumps(LONG_TEXT * 2)},
+               description: {json.dumps(LONG_TEXT)}}}
+      names: {{type: 'string[]', default: [{json.dumps(LONG_TEXT)}, b, c]}}
+      gains: {{type: 'double[]', default: [{', '.join(['0.123456789012345'] * 8)}]}}
+      ratio: {{type: double, default: 0.5,
+               range: {{from: 0.000123456789012345, to: 1234567.12345678901, step: 0.0}}}}
+"""
+
+
+def test_long_model_texts_fit_the_linters_and_keep_their_values(tmp_path):
+    (tmp_path / 'src' / 'verbose').mkdir(parents=True)
+    (tmp_path / 'src' / 'verbose' / 'robmosys.yaml').write_text(LONG_TEXTS_MODEL)
+    generate_workspace(tmp_path / 'src', tmp_path / 'out')
+    node = tmp_path / 'out' / 'verbose' / 'verbose' / 'Verbose.py'
+    for linter in ('ament_flake8', 'ament_pep257'):
+        result = subprocess.run([_linter(linter), str(node)], capture_output=True,
+                                text=True, timeout=300)
+        assert result.returncode == 0, result.stdout + result.stderr
+    tree = ast.parse(node.read_text())
+    declared = {ast.literal_eval(call.args[0]): ast.literal_eval(call.args[1])
+                for call in ast.walk(tree) if isinstance(call, ast.Call)
+                and ast.unparse(call.func) == 'self.declare_parameter'}
+    assert declared == {'label': LONG_TEXT * 2, 'names': [LONG_TEXT, 'b', 'c'],
+                        'gains': [0.123456789012345] * 8, 'ratio': 0.5}
+    descriptions = [ast.literal_eval(k.value) for call in ast.walk(tree)
+                    if isinstance(call, ast.Call)
+                    and ast.unparse(call.func) == 'ParameterDescriptor'
+                    for k in call.keywords if k.arg == 'description']
+    assert LONG_TEXT in descriptions
+    cls = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == 'Verbose')
+    assert LONG_TEXT in ' '.join(ast.get_docstring(cls).split())
+
+
+@pytest.mark.parametrize('text', [
+    'Plain text.', 'A backslash \\ and \\n stay as they are.', 'Quotes """ inside.',
+    "Both \"\"\" and ''' inside.", 'A backslash \\ with """ quotes.',
+    'Summary.\n\nBody with \\ and """ and a long line ' + 'x' * 120 + '.',
+])
+def test_docstrings_keep_the_model_text_and_pass_pep257(tmp_path, text):
+    from colcon_robmosys.generate.filters import py_docstring
+    source = f'"""Module."""\n\n\nclass C:\n    {py_docstring(text, 4)}\n'
+    tree = ast.parse(source)
+    assert ' '.join(ast.get_docstring(tree.body[1]).split()) == ' '.join(text.split())
+    module = tmp_path / 'module.py'
+    module.write_text(source)
+    both = '"""' in text and "'''" in text
+    result = subprocess.run([_linter('ament_pep257'), str(module)], capture_output=True,
+                            text=True, timeout=300)
+    # with both kinds of triple quotes only escapes are left (and D301 says so)
+    assert (result.returncode == 0) != both, result.stdout + result.stderr

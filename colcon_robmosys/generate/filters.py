@@ -49,32 +49,83 @@ def py_str(text: Any) -> str:
     return repr(str(text))
 
 
-def py_docstring(text: Any, indent: int = 0) -> str:
-    """Write the inside of a PEP 257 docstring: summary line, then body.
+#: the line length of ament_flake8 (and of our own code)
+LINE_LENGTH = 99
 
-    The summary ends with a period; quotes and backslashes are escaped. A
-    multi-line docstring starts on the line after the quotes, as the ament
-    convention of pep257 wants (D213).
+
+def py_literal(value: Any, indent: int, prefix: int = 0) -> str:
+    """Write a Python literal whose lines fit ament_flake8's line length.
+
+    The literal starts after ``indent`` spaces and ``prefix`` more characters
+    and is followed by one character (a comma or a parenthesis). A string
+    that does not fit becomes adjacent literals in parentheses, a list one
+    item per line; the value the literal evaluates to stays the same.
     """
-    text = str(text).strip().replace('\\', '\\\\').replace('"""', '\\"\\"\\"')
-    lines = text.splitlines() or ['']
+    text = repr(value)
+    if len(text) + indent + prefix + 1 <= LINE_LENGTH or \
+            not isinstance(value, (str, list)):
+        return text
+    inner = indent + 4
+    pad = ' ' * inner
+    if isinstance(value, str):
+        lines = [pad + part for part in _str_parts(value, LINE_LENGTH - inner)]
+        return '(\n' + '\n'.join(lines) + '\n' + ' ' * indent + ')'
+    lines = [pad + py_literal(item, inner) + ',' for item in value]
+    return '[\n' + '\n'.join(lines) + '\n' + ' ' * indent + ']'
+
+
+def _str_parts(text: str, width: int) -> list[str]:
+    """Split a string into literals of at most ``width`` characters each."""
+    parts, start = [], 0
+    while start < len(text):
+        end = start + 1
+        # at least one character per part, however long its escape is
+        while end < len(text) and len(repr(text[start:end + 1])) <= width:
+            end += 1
+        # words stay whole where a space allows it
+        space = text.rfind(' ', start + 1, end)
+        if end < len(text) and space != -1:
+            end = space + 1
+        parts.append(repr(text[start:end]))
+        start = end
+    return parts
+
+
+def py_docstring(text: Any, indent: int = 0) -> str:
+    """Write a PEP 257 docstring, quotes included: summary line, then body.
+
+    The summary ends with a period. A multi-line docstring starts on the
+    line after the quotes, as the ament convention of pep257 wants (D213).
+    The docstring holds the text exactly: it is raw when the text has a
+    backslash (pep257's D301), and takes the quotes the text does not use.
+    """
+    lines = str(text).strip().splitlines() or ['']
     summary, body = lines[0].strip(), [line.rstrip() for line in lines[1:]]
     if summary and summary[-1] not in '.?!':
         summary += '.'
     while body and not body[0]:
         body.pop(0)
-    if not body:
-        return summary
-    pad = ' ' * indent
-    # long lines of the model's text are wrapped to the line length of
-    # ament_flake8
-    width = max(99 - indent, 40)
-    wrapped = [part for line in body
-               for part in (textwrap.wrap(line, width, break_long_words=False,
-                                          break_on_hyphens=False)
-                            if len(line) > width else [line])]
-    rest = '\n'.join(pad + line if line else '' for line in wrapped)
-    return f'\n{pad}{summary}\n\n{rest}\n{pad}'
+    if body:
+        pad = ' ' * indent
+        # long lines of the model's text are wrapped to the line length of
+        # ament_flake8
+        width = max(LINE_LENGTH - indent, 40)
+        wrapped = [part for line in body
+                   for part in (textwrap.wrap(line, width,
+                                              break_long_words=False,
+                                              break_on_hyphens=False)
+                                if len(line) > width else [line])]
+        rest = '\n'.join(pad + line if line else '' for line in wrapped)
+        content = f'\n{pad}{summary}\n\n{rest}\n{pad}'
+    else:
+        content = summary
+    quotes = '"""' if '"""' not in content else "'''"
+    if quotes in content:
+        # both kinds of triple quotes: escape, the only way left
+        return '"""' + content.replace('\\', '\\\\').replace(
+            '"""', '\\"\\"\\"') + '"""'
+    prefix = 'r' if '\\' in content else ''
+    return f'{prefix}{quotes}{content}{quotes}'
 
 
 #: What a YAML double-quoted scalar must escape: its quote, backslash and
@@ -169,6 +220,7 @@ FILTERS: dict[str, Callable[..., str]] = {
     'msg_comment': hash_comment,
     'hash_comment': hash_comment,
     'py_str': py_str,
+    'py_literal': py_literal,
     'py_docstring': py_docstring,
     'yaml_value': yaml_value,
     'cpp_str': cpp_str,

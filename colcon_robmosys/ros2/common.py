@@ -8,7 +8,23 @@ from __future__ import annotations
 from typing import Any, Iterable
 
 from colcon_robmosys.model.types import (
-    Component, InterfaceRef, Model, PackageInfo, ServiceDefinition)
+    Component, InterfaceRef, Model, PackageInfo, Pattern, Role,
+    ServiceDefinition)
+
+#: What each port becomes in ROS 2, by pattern and role: the same in rclpy
+#: and rclcpp, so that both generators give a model one meaning.
+ENTITIES = {
+    (Pattern.PUSH, Role.PROVIDED): 'publisher',
+    (Pattern.SEND, Role.REQUIRED): 'publisher',
+    (Pattern.PUSH, Role.REQUIRED): 'subscription',
+    (Pattern.SEND, Role.PROVIDED): 'subscription',
+    (Pattern.QUERY, Role.PROVIDED): 'service',
+    (Pattern.QUERY, Role.REQUIRED): 'client',
+    (Pattern.ACTION, Role.PROVIDED): 'action_server',
+    (Pattern.ACTION, Role.REQUIRED): 'action_client',
+    (Pattern.EVENT, Role.PROVIDED): 'event_server',
+    (Pattern.EVENT, Role.REQUIRED): 'event_client',
+}
 
 
 def model_title(model: Model) -> str:

@@ -26,28 +26,14 @@ from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.generate.filters import cpp_str
 from colcon_robmosys.model.qos import resolve_qos
 from colcon_robmosys.model.types import (
-    Activity, Component, InterfaceKind, InterfaceRef, Parameter, Pattern, Port, QoS,
-    Role)
+    Activity, Component, InterfaceKind, InterfaceRef, Parameter, Pattern, Port, QoS)
 from colcon_robmosys.model.workspace import model_dependencies
-from colcon_robmosys.ros2.common import banner_context, package_xml_context
+from colcon_robmosys.ros2.common import (
+    banner_context, ENTITIES, package_xml_context)
 from colcon_robmosys.ros2.plan import FileSpec, PackagePlan, UserFile
 
 #: The ROS 2 packages a C++ component needs in the prefix to build at all.
 CPP_CLIENT_PACKAGES = ('rclcpp', 'rclcpp_lifecycle', 'rclcpp_components')
-
-#: What each pattern and role becomes in rclcpp.
-ENTITIES = {
-    (Pattern.PUSH, Role.PROVIDED): 'publisher',
-    (Pattern.SEND, Role.REQUIRED): 'publisher',
-    (Pattern.PUSH, Role.REQUIRED): 'subscription',
-    (Pattern.SEND, Role.PROVIDED): 'subscription',
-    (Pattern.QUERY, Role.PROVIDED): 'service',
-    (Pattern.QUERY, Role.REQUIRED): 'client',
-    (Pattern.ACTION, Role.PROVIDED): 'action_server',
-    (Pattern.ACTION, Role.REQUIRED): 'action_client',
-    (Pattern.EVENT, Role.PROVIDED): 'event_server',
-    (Pattern.EVENT, Role.REQUIRED): 'event_client',
-}
 
 #: The entities that hold the ports header's classes, and which need actions.
 _PORT_CLASSES = {'client', 'action_client', 'event_server', 'event_client'}
@@ -265,26 +251,19 @@ def _function_signatures(component: Component,
                     'a C++ function has one signature')
             signatures[name] = signature
             decided_by[name] = port['name']
-    for activity in component.activities:
-        if activity.period is None:
-            continue
-        for name in activity.functions:
-            if name in decided_by:
-                function = next(f for f in component.functions if f.name == name)
-                raise RobmosysError.at(
-                    function.location,
-                    f"function '{name}' runs periodically (activity "
-                    f"'{activity.name}') and for the port '{decided_by[name]}'; "
-                    'a C++ function has one signature')
-    for _, names in component.lifecycle:
+    # periodic and lifecycle functions take nothing: no port may decide
+    others = [(f"runs periodically (activity '{a.name}')", a.functions)
+              for a in component.activities if a.period is not None]
+    others += [('runs on a lifecycle transition', names)
+               for _, names in component.lifecycle]
+    for what, names in others:
         for name in names:
             if name in decided_by:
                 function = next(f for f in component.functions if f.name == name)
                 raise RobmosysError.at(
                     function.location,
-                    f"function '{name}' runs on a lifecycle transition and for "
-                    f"the port '{decided_by[name]}'; a C++ function has one "
-                    'signature')
+                    f"function '{name}' {what} and for the port "
+                    f"'{decided_by[name]}'; a C++ function has one signature")
     return signatures
 
 

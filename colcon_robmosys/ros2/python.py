@@ -15,24 +15,11 @@ from typing import Any
 
 from colcon_robmosys.model.qos import resolve_qos
 from colcon_robmosys.model.types import (
-    Activity, Component, InterfaceRef, Parameter, Pattern, Port, QoS, Role)
+    Activity, Component, InterfaceRef, Parameter, Pattern, Port, QoS)
 from colcon_robmosys.model.workspace import model_dependencies
-from colcon_robmosys.ros2.common import banner_context, package_xml_context
+from colcon_robmosys.ros2.common import (
+    banner_context, ENTITIES, package_xml_context)
 from colcon_robmosys.ros2.plan import FileSpec, PackagePlan, UserFile
-
-#: What each port becomes in rclpy, by pattern and role.
-ENTITIES = {
-    (Pattern.PUSH, Role.PROVIDED): 'publisher',
-    (Pattern.SEND, Role.REQUIRED): 'publisher',
-    (Pattern.PUSH, Role.REQUIRED): 'subscription',
-    (Pattern.SEND, Role.PROVIDED): 'subscription',
-    (Pattern.QUERY, Role.PROVIDED): 'service',
-    (Pattern.QUERY, Role.REQUIRED): 'client',
-    (Pattern.ACTION, Role.PROVIDED): 'action_server',
-    (Pattern.ACTION, Role.REQUIRED): 'action_client',
-    (Pattern.EVENT, Role.PROVIDED): 'event_server',
-    (Pattern.EVENT, Role.REQUIRED): 'event_client',
-}
 
 #: The helper classes of the node module each entity needs.
 HELPERS = {
@@ -98,9 +85,10 @@ def _node_imports(names: dict[InterfaceRef, str], component: Component,
     modules: dict[str, set[str]] = {
         'rclpy.lifecycle': {'LifecycleNode', 'LifecycleState',
                             'TransitionCallbackReturn'},
-        'threading': set(),
-        'traceback': set(),
     }
+    if component.ports or component.activities or component.lifecycle:
+        # every piece of user code runs in a try that logs the traceback
+        modules['traceback'] = set()
     for ref, local in names.items():
         alias = '' if local == ref.name else f' as {local}'
         modules.setdefault(f'{ref.package}.{ref.kind.value}', set()).add(
@@ -114,7 +102,9 @@ def _node_imports(names: dict[InterfaceRef, str], component: Component,
                     'IntegerRange' if parameter.type == 'int'
                     else 'FloatingPointRange')
     if component.activities or entities & set(HELPERS):
+        # a callback group and a lock per activity, and in the port helpers
         modules['rclpy.callback_groups'] = {'MutuallyExclusiveCallbackGroup'}
+        modules['threading'] = set()
     if entities & {'publisher', 'subscription', 'event_server',
                    'event_client'}:
         modules['rclpy.qos'] = {'DurabilityPolicy', 'HistoryPolicy',
@@ -230,7 +220,7 @@ def _parameter_context(parameter: Parameter) -> dict[str, Any]:
         'name': parameter.name,
         'py_type': py_type,
         'ros_type': ros_type,
-        'default': repr(default),
+        'default': default,
         'description': parameter.description,
         # pep257 wants an imperative summary; the model's text follows it
         'doc': _doc(f'Return the parameter {parameter.name}.',
@@ -242,6 +232,20 @@ def _parameter_context(parameter: Parameter) -> dict[str, Any]:
 
 def _doc(summary: str, text: str) -> str:
     return f'{summary}\n\n{text}' if text.strip() else summary
+
+
+def _class_doc(cls: str, description: str) -> str:
+    """Return the docstring of the node class.
+
+    The first line of the model's description is its summary when it fits
+    on the line of the class docstring; pep257 wants a one-line summary and
+    ament_flake8 lines of at most 99 characters.
+    """
+    lines = description.strip().splitlines()
+    # 4 spaces, two triple quotes and the period pep257 may add
+    if lines and len(lines[0].replace('\\', '\\\\')) + 11 <= 99:
+        return description
+    return _doc(f'The lifecycle node of the component {cls}.', description)
 
 
 def _function_context(component: Component, name: str, args: list[str],
@@ -288,7 +292,7 @@ def plan_python_component(component: Component) -> PackagePlan:
     has_impl = bool(user_functions)
     module_context = {
         'banner': banner, 'package': package, 'cls': cls,
-        'description': component.info.description,
+        'description': _class_doc(cls, component.info.description),
         'imports': _node_imports(type_names, component, entities,
                                  uses_duration),
         'ports': ports, 'activities': activities,
