@@ -12,7 +12,8 @@ import pytest
 from colcon_robmosys.errors import Location, RobmosysError
 from colcon_robmosys.model import load_model_file
 from colcon_robmosys.model.loader import (
-    load_file, load_text, MAX_ALIASED_VALUES, MAX_MODEL_BYTES)
+    load_file, load_text, MAX_ALIASED_VALUES, MAX_MODEL_BYTES, MAX_MODEL_DEPTH,
+    MAX_MODEL_NODES)
 
 PATH = Path('robmosys.yaml')
 
@@ -198,7 +199,7 @@ def test_recursive_alias_is_refused():
     ('a: b: c\n', '1:5: error: invalid YAML: mapping values are not allowed '
      'here'),
     ('a: 1\n\tb: 2\n', "2:1: error: invalid YAML: found character '\\t' "
-     'that cannot start any token'),
+     'that cannot start any token (YAML indents with spaces only)'),
     ('a: *nothing\n', '1:4: error: invalid YAML: found undefined alias '
      "'nothing'"),
     ('a: 1\n---\nb: 2\n', '2:1: error: invalid YAML: expected a single '
@@ -259,6 +260,29 @@ def test_huge_file_is_refused_before_reading(tmp_path: Path):
     assert str(info.value) == (
         f'{path}: error: the model file has {MAX_MODEL_BYTES + 1} bytes, '
         f'more than the {MAX_MODEL_BYTES} a model may have')
+
+
+def test_huge_model_within_the_size_limit_is_refused_fast(tmp_path: Path):
+    """A file just under the byte limit, of tiny values, stops at the node limit."""
+    path = tmp_path / 'robmosys.yaml'
+    items = ','.join(['x'] * ((MAX_MODEL_BYTES - 100) // 2))
+    path.write_text(f'robmosys: 1\ncomponents: [{items}]\n')
+    assert path.stat().st_size <= MAX_MODEL_BYTES
+    start = time.monotonic()
+    with pytest.raises(RobmosysError) as info:
+        load_file(path)
+    assert time.monotonic() - start < 30
+    # four values before the list (mapping, key, value, key), the list, its items
+    column = len('components: [') + 1 + 2 * (MAX_MODEL_NODES - 5)
+    assert str(info.value) == (
+        f'{path}:2:{column}: error: the model holds more than {MAX_MODEL_NODES} values')
+
+
+def test_deep_nesting_is_refused_not_a_recursion_error():
+    text = 'a: ' + '[' * 5000 + ']' * 5000 + '\n'
+    assert _errors(text) == [
+        f'robmosys.yaml:1:{4 + MAX_MODEL_DEPTH - 1}: error: the model nests mappings and '
+        f'lists more than {MAX_MODEL_DEPTH} levels deep']
 
 
 def test_missing_file(tmp_path: Path):

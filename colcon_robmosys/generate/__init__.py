@@ -7,13 +7,15 @@ from __future__ import annotations
 
 import ast
 from dataclasses import dataclass, field
+import hashlib
 from pathlib import Path
 import re
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
 from colcon_robmosys.generate.render import render
 from colcon_robmosys.generate.writer import (
-    create_user_file, remove_generated, write_generated)
+    create_user_file, is_generated, remove_generated, remove_leftovers,
+    write_generated)
 from colcon_robmosys.ros2.plan import PackagePlan, UserFile
 
 #: Lists, inside a generated package, the files the generation wrote.
@@ -137,7 +139,6 @@ def generate_package(plan: PackagePlan, out_dir: Path) -> GenerationReport:
     for spec in plan.files:
         outputs[spec.path] = (render(spec.template, spec.context)
                               .encode('utf-8'), spec.executable)
-    copies = set()
     for user_file in plan.user_files:
         source = plan.model_dir / user_file.source_path
         if not source.is_file():
@@ -149,7 +150,6 @@ def generate_package(plan: PackagePlan, out_dir: Path) -> GenerationReport:
             continue
         problems += user_file_problems(user_file, source)
         outputs[user_file.package_path] = (source.read_bytes(), False)
-        copies.add(user_file.package_path)
     if problems:
         problems = [_with_skeleton_path(d, plan, out_dir) for d in problems]
         for user_file in plan.user_files:
@@ -162,26 +162,83 @@ def generate_package(plan: PackagePlan, out_dir: Path) -> GenerationReport:
         raise RobmosysError(problems)
 
     report = GenerationReport()
+    if out_dir.is_dir():
+        report.removed += remove_leftovers(out_dir)
     manifest_path = out_dir / MANIFEST
-    try:
-        previous = {line for line in manifest_path.read_text().split('\n')
-                    if line and not line.startswith('#')}
-    except FileNotFoundError:
-        previous = set()
+    previous = read_manifest(manifest_path)
+    final: Manifest = {relative: {_digest(data)}
+                       for relative, (data, _) in outputs.items()}
+    # a run killed half-way must leave every file it wrote known as ours:
+    # first record the old and the new content of each file, then write
+    pending: Manifest = dict(previous)
+    for relative, digests in final.items():
+        pending[relative] = (previous.get(relative) or set()) | (digests or set())
+    if pending != previous:
+        _write_manifest(manifest_path, pending)
     for relative, (data, executable) in sorted(outputs.items()):
         path = out_dir / relative
-        owned = relative in copies or relative in previous
-        if write_generated(path, data, executable=executable, owned=owned):
+        if write_generated(path, data, executable=executable,
+                           owned=_unchanged_since(path, previous, relative)):
             report.written.append(path)
         else:
             report.unchanged.append(path)
-    for relative in sorted(previous - set(outputs)):
-        if remove_generated(out_dir / relative, out_dir):
-            report.removed.append(out_dir / relative)
-    write_generated(manifest_path, (
-        f'# {GENERATED_NOTE}\n' + '\n'.join(sorted(outputs)) + '\n'
-    ).encode('utf-8'), owned=True)
+    for relative in sorted(previous.keys() - outputs.keys()):
+        path = out_dir / relative
+        if not _unchanged_since(path, previous, relative) and \
+                not is_generated(path):
+            # replaced by a file of the user's since: theirs to keep
+            continue
+        if remove_generated(path, out_dir):
+            report.removed.append(path)
+    _write_manifest(manifest_path, final)
     return report
+
+
+#: The files of a generation -> the digests of the contents it may have
+#: written there; None for a manifest written before digests were recorded.
+Manifest = dict[str, set[str] | None]
+
+
+def read_manifest(path: Path) -> Manifest:
+    """Return the files a generation wrote, with the digests of each."""
+    try:
+        lines = path.read_text(encoding='utf-8').split('\n')
+    except FileNotFoundError:
+        return {}
+    files: Manifest = {}
+    for line in lines:
+        if not line or line.startswith('#'):
+            continue
+        digest, sep, relative = line.partition('  ')
+        if sep and len(digest) == 64:
+            files[relative] = (files.get(relative) or set()) | {digest}
+        else:
+            files[line] = None
+    return files
+
+
+def _write_manifest(path: Path, files: Manifest) -> None:
+    write_generated(path, (f'# {GENERATED_NOTE}\n' + ''.join(
+        f'{digest}  {relative}\n' for relative in sorted(files)
+        for digest in sorted(files[relative] or ())
+    )).encode('utf-8'), owned=True)
+
+
+def _digest(data: bytes) -> str:
+    return hashlib.sha256(data).hexdigest()
+
+
+def _unchanged_since(path: Path, previous: Manifest, relative: str) -> bool:
+    """Say whether a file still holds what a generation wrote there."""
+    if relative not in previous:
+        return False
+    digests = previous[relative]
+    if digests is None:
+        return True  # an old manifest: trust it as before
+    try:
+        return _digest(path.read_bytes()) in digests
+    except OSError:
+        return False
 
 
 GENERATED_NOTE = 'Generated by colcon-robmosys: the files of the last generation'

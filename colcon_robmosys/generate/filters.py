@@ -6,19 +6,36 @@
 from __future__ import annotations
 
 import json
+import re
 import textwrap
 from typing import Any, Callable
 from xml.sax.saxutils import escape as _xml_escape
 
 
 def xml(text: Any) -> str:
-    """Escape text for XML element content and attribute values."""
-    return _xml_escape(str(text), {'"': '&quot;', "'": '&apos;'})
+    """Escape text for XML element content and attribute values.
+
+    A carriage return is written as a character reference: XML parsers
+    turn a raw one into a newline.
+    """
+    return _xml_escape(str(text), {'"': '&quot;', "'": '&apos;',
+                                   '\r': '&#13;'})
+
+
+def xml_attr(text: Any) -> str:
+    """Escape text for an XML attribute value, keeping its white space.
+
+    Parsers replace raw tabs and newlines in attribute values by spaces.
+    """
+    return xml(text).replace('\n', '&#10;').replace('\t', '&#9;')
 
 
 def xml_comment(text: Any) -> str:
-    """Make text safe inside an XML comment (no ``--``)."""
-    return str(text).replace('--', '- -').replace('\n', ' ')
+    """Make text safe inside an XML comment: no ``--``, no final ``-``."""
+    text = ' '.join(str(text).splitlines())
+    while '--' in text:
+        text = text.replace('--', '- -')
+    return text + ' ' if text.endswith('-') else text
 
 
 def hash_comment(text: Any) -> str:
@@ -111,11 +128,31 @@ def py_docstring(text: Any, indent: int = 0) -> str:
     return f'{prefix}{quotes}{content}{quotes}'
 
 
+#: What a YAML double-quoted scalar must escape: its quote, backslash and
+#: every character YAML does not allow raw or reads as a line break.
+_YAML_ESCAPED = re.compile(
+    '["\\\\\x00-\x1f\x7f-\x9f\u2028\u2029\ud800-\udfff\ufffe\uffff]')
+
+
+def _yaml_escape(match: re.Match[str]) -> str:
+    char = match.group()
+    if char in '"\\':
+        return '\\' + char
+    code = ord(char)
+    return f'\\x{code:02x}' if code < 0x100 else f'\\u{code:04x}'
+
+
 def yaml_value(value: Any) -> str:
-    """Write a value as a YAML flow scalar or sequence (JSON is YAML)."""
-    if isinstance(value, tuple):
-        value = list(value)
-    return json.dumps(value, ensure_ascii=False)
+    """Write a value as a YAML flow scalar or sequence.
+
+    Strings are double-quoted, with escapes only where YAML needs them, so
+    that the file reads back exactly the text of the model.
+    """
+    if isinstance(value, (tuple, list)):
+        return '[' + ', '.join(yaml_value(v) for v in value) + ']'
+    if isinstance(value, str):
+        return '"' + _YAML_ESCAPED.sub(_yaml_escape, value) + '"'
+    return json.dumps(value)
 
 
 _CPP_ESCAPES = {'\\': '\\\\', '"': '\\"', '\n': '\\n', '\t': '\\t',
@@ -150,17 +187,24 @@ def cpp_comment(text: Any, prefix: str = '//') -> str:
     out = []
     for line in lines:
         line = f'{prefix} {line}'.rstrip()
-        if line.endswith('\\'):
+        # ('??/' is a backslash where a compiler still reads trigraphs)
+        if line.endswith(('\\', '??/')):
             line += '.'
         out.append(line)
     return '\n'.join(out)
 
 
+_CMAKE_ESCAPES = {'\\': '\\\\', '"': '\\"', '$': '\\$', '\n': '\\n',
+                  '\r': '\\r', '\t': '\\t'}
+
+
 def cmake_str(text: Any) -> str:
-    """Write a quoted CMake argument: no variable or generator expansion."""
-    escaped = str(text).replace('\\', '\\\\').replace('"', '\\"')
-    escaped = escaped.replace('$', '\\$').replace(';', '\\;')
-    return f'"{escaped}"'
+    """Write a quoted CMake argument: no variable or generator expansion.
+
+    A quoted argument is never split at semicolons, so they stay as they
+    are (an escaped one would keep its backslash there).
+    """
+    return '"' + ''.join(_CMAKE_ESCAPES.get(c, c) for c in str(text)) + '"'
 
 
 def dot_str(text: Any) -> str:
@@ -171,6 +215,7 @@ def dot_str(text: Any) -> str:
 
 FILTERS: dict[str, Callable[..., str]] = {
     'xml': xml,
+    'xml_attr': xml_attr,
     'xml_comment': xml_comment,
     'msg_comment': hash_comment,
     'hash_comment': hash_comment,

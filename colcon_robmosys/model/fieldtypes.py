@@ -15,11 +15,15 @@ from colcon_robmosys.model.types import (
 _FIELD_TYPE_RE = re.compile(
     r'^(?:(?P<package>[a-z][a-z0-9_]*)/(?:msg/)?)?(?P<base>[A-Za-z][A-Za-z0-9_]*)'
     r'(?:<=(?P<string_bound>[0-9]+))?'
-    r'(?:\[(?P<array>(?:<=)?[0-9]*)\])?$')
+    r'(?:\[(?P<array>(?:<=)?[0-9]*)\])?\Z')
 
 _INTERFACE_RE = re.compile(
     r'^(?P<package>[a-z][a-z0-9_]*)/(?:(?P<kind>msg|srv|action)/)?'
-    r'(?P<name>[A-Z][A-Za-z0-9]*)$')
+    r'(?P<name>[A-Z][A-Za-z0-9]*)\Z')
+
+#: rosidl reads a .msg line up to its first '#' and splits it at its first
+#: '='; it unescapes only quotes, so a backslash would change meaning.
+_MSG_UNSAFE = frozenset('#=\\')
 
 _INT_RANGES = {
     'int8': (-2 ** 7, 2 ** 7 - 1), 'uint8': (0, 2 ** 8 - 1),
@@ -135,6 +139,12 @@ def _scalar_problem(field_type: FieldType, value: Any) -> str | None:
                 len(value) > field_type.string_bound:
             return (f'the string is longer than its bound of '
                     f'{field_type.string_bound}')
+        unsafe = next((c for c in value if c in _MSG_UNSAFE or
+                       not c.isprintable()), None)
+        if unsafe is not None:
+            return (f'the string {value!r} holds {unsafe!r}, which the .msg '
+                    'format cannot carry in a value (it has no escapes for '
+                    "'#', '=', '\\' and control characters)")
         return None
     if primitive in ('float32', 'float64'):
         if isinstance(value, bool) or not isinstance(value, (int, float)):

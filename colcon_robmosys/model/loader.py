@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+import re
 from typing import Any
 
 import yaml
@@ -16,12 +17,28 @@ from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
 #: A path into the loaded data: mapping keys and sequence indexes.
 NodePath = tuple[str | int, ...]
 
-#: Model files larger than this are refused before parsing.
-MAX_MODEL_BYTES = 4 * 1024 * 1024
+#: Model files larger than this are refused before parsing. PyYAML parses
+#: some 150 kB a second: a megabyte keeps the worst case to seconds, and is
+#: far more than a model of even a large package needs.
+MAX_MODEL_BYTES = 1024 * 1024
+
+#: How many values (mappings, lists, scalars) a model file may hold: about
+#: four seconds of parsing, however short the values are.
+MAX_MODEL_NODES = 100_000
+
+#: How deeply mappings and lists may nest: a model nests some ten levels;
+#: thousands would exhaust Python's stack in the YAML composer.
+MAX_MODEL_DEPTH = 64
 
 #: How many values aliases may repeat in all: the data is shared, but every
 #: later step (validation, messages, generated files) walks it expanded.
 MAX_ALIASED_VALUES = 100_000
+
+#: What YAML allows in a file (YAML 1.1, 5.1): an escape in a quoted
+#: string could still produce anything else, which no generated file can
+#: carry (XML has no NUL, UTF-8 no lone surrogate).
+_NOT_PRINTABLE = re.compile(
+    '[^\t\n\r\x20-\x7e\x85\xa0-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]')
 
 _MERGE_TAG = 'tag:yaml.org,2002:merge'
 _MAP_TAG = 'tag:yaml.org,2002:map'
@@ -51,10 +68,36 @@ class LoadedFile:
         return self.value_marks.get((), Location(str(self.path), 1, 1))
 
 
+class _LimitedLoader(yaml.SafeLoader):
+    """A SafeLoader that stops at the size and depth limits of a model."""
+
+    def __init__(self, stream: str, path: Path):
+        super().__init__(stream)
+        self._path = path
+        self._depth = 0
+        self._nodes = 0
+
+    def compose_node(self, parent: Any, index: Any) -> Any:
+        self._depth += 1
+        self._nodes += 1
+        if self._depth > MAX_MODEL_DEPTH or self._nodes > MAX_MODEL_NODES:
+            mark = self.peek_event().start_mark
+            raise RobmosysError.at(
+                Location(str(self._path), mark.line + 1, mark.column + 1),
+                f'the model nests mappings and lists more than '
+                f'{MAX_MODEL_DEPTH} levels deep'
+                if self._depth > MAX_MODEL_DEPTH else
+                f'the model holds more than {MAX_MODEL_NODES} values')
+        try:
+            return super().compose_node(parent, index)
+        finally:
+            self._depth -= 1
+
+
 class _Builder:
     """Turn a composed YAML node graph into plain data, recording marks."""
 
-    def __init__(self, path: Path, loader: yaml.SafeLoader, text: str):
+    def __init__(self, path: Path, loader: _LimitedLoader, text: str):
         self._display = str(path)
         self._loader = loader
         self._lines = text.split('\n')
@@ -110,6 +153,8 @@ class _Builder:
             explicit_keys: set[str] = set()
             for index, (key_node, value_node) in enumerate(node.value):
                 key = self._loader.construct_object(key_node, deep=True)
+                if isinstance(key, str) and self._unprintable(key_node, key):
+                    continue
                 if not isinstance(key, str):
                     self.diagnostics.append(Diagnostic(
                         self.location(key_node),
@@ -140,9 +185,23 @@ class _Builder:
                 self._sizes.get(id(v), 0) for v in node.value)
             return items
         value = self._loader.construct_object(node, deep=True)
+        if isinstance(value, str) and self._unprintable(node, value):
+            value = _NOT_PRINTABLE.sub('\ufffd', value)
         self._built[id(node)] = value
         self._sizes[id(node)] = 1
         return value
+
+    def _unprintable(self, node: yaml.Node, text: str) -> bool:
+        """Report a character of a string that YAML does not allow raw."""
+        found = _NOT_PRINTABLE.search(text)
+        if found is None:
+            return False
+        self.diagnostics.append(Diagnostic(
+            self.location(node),
+            f'the string holds the character U+{ord(found.group()):04X}, '
+            'which a model may not hold: only printable characters, tabs '
+            'and line breaks can reach the generated files'))
+        return True
 
     def _alias(self, node: yaml.Node, path: NodePath) -> Any:
         """Return the data of a node met again, through an alias."""
@@ -165,6 +224,8 @@ class _Builder:
 def _yaml_problem(exc: yaml.MarkedYAMLError) -> str:
     """Say what PyYAML found, with where the construct it was in began."""
     problem, context = exc.problem, exc.context
+    if problem and "'\\t'" in problem:
+        problem += ' (YAML indents with spaces only)'
     if not problem:
         return context or 'invalid YAML'
     if context and context.startswith('expected'):
@@ -191,7 +252,7 @@ def load_text(text: str, path: Path) -> LoadedFile:
     :raises RobmosysError: for YAML syntax errors and ambiguous keys
     """
     try:
-        loader = yaml.SafeLoader(text)
+        loader = _LimitedLoader(text, path)
     except yaml.reader.ReaderError as exc:
         # the reader checks the whole text at once, before any parsing
         raise RobmosysError.at(

@@ -1,18 +1,22 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-"""Naming rules: what a name must be to work in ROS 2, C++ and Python."""
+r"""Naming rules: what a name must be to work in ROS 2, C++ and Python.
+
+The patterns end with ``\Z``, not ``$``, which also matches before a final
+newline and would let a name followed by a newline through.
+"""
 
 from __future__ import annotations
 
 import keyword
 import re
 
-PACKAGE_RE = re.compile(r'^(?!.*__)(?!.*_$)[a-z][a-z0-9_]+$')
-INTERFACE_TYPE_RE = re.compile(r'^[A-Z][A-Za-z0-9]*$')
-FIELD_RE = re.compile(r'^(?!.*__)(?!.*_$)[a-z][a-z0-9_]*$')
-CONSTANT_RE = re.compile(r'^(?!.*__)[A-Z](?:[A-Z0-9_]*[A-Z0-9])?$')
-IDENTIFIER_RE = re.compile(r'^(?!.*__)[A-Za-z][A-Za-z0-9_]*$')
+PACKAGE_RE = re.compile(r'^(?!.*__)(?!.*_\Z)[a-z][a-z0-9_]+\Z')
+INTERFACE_TYPE_RE = re.compile(r'^[A-Z][A-Za-z0-9]*\Z')
+FIELD_RE = re.compile(r'^(?!.*__)(?!.*_\Z)[a-z][a-z0-9_]*\Z')
+CONSTANT_RE = re.compile(r'^(?!.*__)[A-Z](?:[A-Z0-9_]*[A-Z0-9])?\Z')
+IDENTIFIER_RE = re.compile(r'^(?!.*__)[A-Za-z][A-Za-z0-9_]*\Z')
 
 CPP_KEYWORDS = frozenset("""
 alignas alignof and and_eq asm atomic_cancel atomic_commit atomic_noexcept

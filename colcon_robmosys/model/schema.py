@@ -8,10 +8,12 @@ from __future__ import annotations
 from functools import lru_cache
 from importlib import resources
 import json
+import re
 from typing import Any, Iterator
 
 from jsonschema import Draft202012Validator
 from jsonschema.exceptions import ValidationError
+from jsonschema.validators import extend
 
 from colcon_robmosys.errors import Diagnostic
 from colcon_robmosys.model.loader import LoadedFile
@@ -33,9 +35,27 @@ def schema() -> dict[str, Any]:
     return json.loads(text)
 
 
+@lru_cache(maxsize=None)
+def _compiled(pattern: str) -> re.Pattern[str]:
+    # JSON Schema patterns are ECMA-262 regexes, where '$' is the end of the
+    # text; Python's '$' also matches before a final newline, which would
+    # let 'name\n' pass as a name
+    return re.compile(re.sub(r'(?<!\\)\$', r'\\Z', pattern))
+
+
+def _pattern(validator: Any, pattern: str, instance: Any,
+             schema_: dict[str, Any]) -> Iterator[ValidationError]:
+    if validator.is_type(instance, 'string') and \
+            not _compiled(pattern).search(instance):
+        yield ValidationError(f'{instance!r} does not match {pattern!r}')
+
+
+_Validator = extend(Draft202012Validator, {'pattern': _pattern})
+
+
 @lru_cache(maxsize=1)
-def _validator() -> Draft202012Validator:
-    return Draft202012Validator(schema())
+def _validator() -> Any:
+    return _Validator(schema())
 
 
 def _describe(value: Any) -> str:
@@ -48,7 +68,8 @@ def _describe(value: Any) -> str:
     if isinstance(value, list):
         return 'a list'
     if isinstance(value, str):
-        return f"'{value}'"
+        # a newline or another invisible character is shown escaped
+        return f"'{value}'" if value.isprintable() else repr(value)
     return repr(value)
 
 
@@ -99,13 +120,13 @@ def _message(error: ValidationError) -> tuple[str, bool]:
                 f'{_describe(error.instance)}'), False
     if validator == 'pattern' and 'propertyNames' in \
             error.absolute_schema_path:
-        return (f"'{error.instance}' is not a valid name: "
+        return (f'{_describe(error.instance)} is not a valid name: '
                 f'{_pattern_hint(error.schema)}'), True
     if validator == 'pattern':
         return (f'{_subject(path)}: {_describe(error.instance)} is not valid: '
                 f'{_pattern_hint(error.schema)}'), False
     if validator == 'propertyNames':
-        return (f"'{error.instance}' is not a valid name: "
+        return (f'{_describe(error.instance)} is not a valid name: '
                 f"{error.schema.get('description', 'invalid name')}"), True
     if validator in ('minItems', 'minProperties', 'minLength'):
         return f'{_subject(path)} must not be empty', False

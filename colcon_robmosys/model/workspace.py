@@ -7,13 +7,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterable, Iterator, Sequence
+from typing import Any, Iterable, Iterator, Sequence
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
 from colcon_robmosys.model.build import (
     FileBuilder, parameter_value_problem)
 from colcon_robmosys.model.index import InterfaceIndex
-from colcon_robmosys.model.loader import load_file
+from colcon_robmosys.model.loader import load_file, LoadedFile
 from colcon_robmosys.model.names import connection_name, node_name
 from colcon_robmosys.model.qos import qos_incompatibility
 from colcon_robmosys.model.schema import check_structure
@@ -64,7 +64,14 @@ def load_model_file(path: Path) -> ModelFile:
 
     :raises RobmosysError: with every problem of the file
     """
-    loaded = load_file(path)
+    return check_model_file(load_file(path))
+
+
+def check_model_file(loaded: LoadedFile) -> ModelFile:
+    """Check a loaded file on its own.
+
+    :raises RobmosysError: with every problem of the file
+    """
     problems = check_structure(loaded)
     if problems:
         raise RobmosysError(problems)
@@ -87,10 +94,17 @@ def load_workspace(paths: Iterable[Path],
     broken: dict[str, list[tuple[str, str]]] = {}
     for path in sorted(set(paths)):
         try:
-            files.append(load_model_file(path))
+            loaded = load_file(path)
         except RobmosysError as exc:
             diagnostics.extend(exc.diagnostics)
-            broken[str(path)] = declared_packages(path)
+            broken[str(path)] = []
+            continue
+        try:
+            files.append(check_model_file(loaded))
+        except RobmosysError as exc:
+            diagnostics.extend(exc.diagnostics)
+            # read once: a large file is slow to parse
+            broken[str(path)] = packages_of(loaded.data)
     checker = _WorkspaceChecker(
         files, index or InterfaceIndex.from_environment(),
         (name for declared in broken.values() for name, _ in declared))
@@ -115,6 +129,11 @@ def declared_packages(path: Path) -> list[tuple[str, str]]:
         data = load_file(path).data
     except RobmosysError:
         return []
+    return packages_of(data)
+
+
+def packages_of(data: Any) -> list[tuple[str, str]]:
+    """Return the packages, and their kinds, the data of a file declares."""
     if not isinstance(data, dict):
         return []
     return [(model['package'], kind)
@@ -438,6 +457,8 @@ class _WorkspaceChecker:
             self.error(model.info.location, 'dependency cycle: ' +
                        ' -> '.join(cycle + [cycle[0]]))
         for model in self.models.values():
+            if isinstance(model, ServiceDefinition):
+                self._check_message_cycles(model)
             if isinstance(model, System):
                 order = {i.name: set(i.after) for i in model.instances}
                 for cycle in _cycles(order):
@@ -445,6 +466,19 @@ class _WorkspaceChecker:
                     assert instance is not None
                     self.error(instance.location, 'activation order cycle: ' +
                                ' -> '.join(cycle + [cycle[0]]))
+
+    def _check_message_cycles(self, definition: ServiceDefinition) -> None:
+        # across packages, a cycle of messages is a dependency cycle too
+        objects = {o.name: o for o in definition.communication_objects}
+        graph = {name: {f.type.message.name for f in obj.structure.fields
+                        if f.type.message is not None and
+                        f.type.message.package == definition.package}
+                 for name, obj in objects.items()}
+        for cycle in _cycles(graph):
+            self.error(objects[cycle[0]].location, (
+                'message type cycle: ' + ' -> '.join(cycle + [cycle[0]]) +
+                ' (a message cannot contain itself, not even through '
+                'arrays or other messages)'))
 
 
 def _a(word: str) -> str:

@@ -5,7 +5,6 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
@@ -23,9 +22,9 @@ def _literal(value: Any, primitive: str | None) -> str:
     if isinstance(value, bool):
         return 'true' if value else 'false'
     if isinstance(value, str):
-        # rosidl reads string literals with Python-like escapes; JSON
-        # quoting keeps quotes, backslashes and control characters data
-        return json.dumps(value, ensure_ascii=False)
+        # rosidl strips the outer quotes and unescapes only inner ones; the
+        # model refuses what else it could not read back (fieldtypes.py)
+        return '"' + value.replace('"', '\\"') + '"'
     return repr(value)
 
 

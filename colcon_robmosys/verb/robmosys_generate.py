@@ -66,6 +66,11 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
                   ', '.join(sorted(d.name for d in selected)))
             return 0
         status = 0
+        if args.output_dir is not None:
+            # as colcon marks build/ and install/: the generated packages
+            # must not be found as packages of the workspace next time
+            args.output_dir.mkdir(parents=True, exist_ok=True)
+            (args.output_dir / 'COLCON_IGNORE').touch()
         for descriptor in selected:
             try:
                 plan = plan_package(result.workspace, descriptor.name)

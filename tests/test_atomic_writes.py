@@ -1,0 +1,204 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""A generation killed at any moment leaves each file complete-old or complete-new.
+
+A subprocess regenerates test_workspace's packages from changed models (large
+descriptions, so that there is much to write) and is killed with SIGKILL at
+random moments; every file must then hold the whole old or the whole new
+content, and the next generation must finish the work and leave no
+temporary file behind.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+from pathlib import Path
+import random
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+from colcon_robmosys.generate import generate_package, MANIFEST, read_manifest
+from colcon_robmosys.generate.writer import TEMP_SUFFIX
+from colcon_robmosys.model import find_model_files, load_workspace
+from colcon_robmosys.model.index import InterfaceIndex
+from colcon_robmosys.ros2 import plan_package
+from conftest import TEST_WORKSPACE
+
+#: Generates every model of argv[1] into argv[2]/<package>; says 'go' once
+#: imported and planned, so that the kill falls into the writing. With a
+#: number argv[3], the child SIGKILLs itself at that file operation (creating,
+#: renaming or removing a file: Python's audit events), a moment that a
+#: machine's load cannot shift.
+CHILD = """
+import os
+import signal
+import sys
+from pathlib import Path
+from colcon_robmosys.generate import generate_package
+from colcon_robmosys.model import find_model_files, load_workspace
+from colcon_robmosys.model.index import InterfaceIndex
+from colcon_robmosys.ros2 import plan_package
+
+src, out = Path(sys.argv[1]), Path(sys.argv[2])
+result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
+result.raise_errors()
+plans = [plan_package(result.workspace, m.package) for m in result.workspace.models]
+events = []
+
+def hook(event, args):
+    if event in ('open', 'os.rename', 'os.remove', 'os.link') and len(sys.argv) > 3:
+        if event != 'open' or str(args[0]).startswith(str(out)):
+            events.append(event)
+            if len(events) == int(sys.argv[3]):
+                os.kill(os.getpid(), signal.SIGKILL)
+
+sys.addaudithook(hook)
+print('go', flush=True)
+for plan in plans:
+    generate_package(plan, out / plan.name)
+print('events', len(events), flush=True)
+"""
+
+ITERATIONS = 8
+
+
+def _version(src: Path, text: str) -> None:
+    """Give every model of src a long description made of text."""
+    description = ' '.join([text] * 3000)
+    for model in src.rglob('robmosys.yaml'):
+        lines = model.read_text().splitlines(keepends=True)
+        lines = [line for line in lines if not line.startswith('    description:')]
+        index = next(i for i, line in enumerate(lines) if line.startswith('  - '))
+        lines.insert(index + 1, f'    description: {description}\n')
+        model.write_text(''.join(lines))
+
+
+def _generate(src: Path, out: Path, *, kill_after: float | None = None,
+              kill_at: int | None = None) -> tuple[float, str]:
+    """Run the child; kill it kill_after seconds after 'go' or at its kill_at-th file operation.
+
+    :returns: how long the child ran after 'go', and what it printed then
+    """
+    command = [sys.executable, '-c', CHILD, str(src), str(out)]
+    if kill_at is not None:
+        command.append(str(kill_at))
+    child = subprocess.Popen(command, stdout=subprocess.PIPE, text=True)
+    try:
+        assert child.stdout is not None
+        assert child.stdout.readline() == 'go\n'
+        start = time.monotonic()
+        if kill_after is not None:
+            time.sleep(kill_after)
+            child.send_signal(signal.SIGKILL)
+        rest = child.stdout.read()
+        child.wait(timeout=120)
+        if kill_after is None and kill_at is None:
+            assert child.returncode == 0
+        return time.monotonic() - start, rest
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.wait()
+
+
+def _generate_here(src: Path, out: Path) -> None:
+    result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
+    for model in result.workspace.models:
+        generate_package(plan_package(result.workspace, model.package), out / model.package)
+
+
+def _files(root: Path) -> dict[str, bytes]:
+    return {str(p.relative_to(root)): p.read_bytes()
+            for p in sorted(root.rglob('*')) if p.is_file()}
+
+
+def _check_manifest(path: Path) -> None:
+    """Check that the manifest knows each file of its package as generated.
+
+    Between its two writes it lists the old and the new digest of each file.
+    """
+    manifest = read_manifest(path)
+    for file in path.parent.rglob('*'):
+        if file.is_file() and file != path and not file.name.endswith(TEMP_SUFFIX):
+            digests = manifest[str(file.relative_to(path.parent))]
+            assert digests and hashlib.sha256(file.read_bytes()).hexdigest() in digests
+
+
+def test_killed_generation_leaves_whole_files(tmp_path):
+    src = tmp_path / 'src'
+    shutil.copytree(TEST_WORKSPACE / 'src', src, ignore=shutil.ignore_patterns('__pycache__'))
+    users = _files(src)
+    _version(src, 'Old text.')
+    _generate(src, tmp_path / 'old')
+    old = _files(tmp_path / 'old')
+    _version(src, 'New words, longer.')
+    shutil.copytree(tmp_path / 'old', tmp_path / 'new')
+    duration, printed = _generate(src, tmp_path / 'new', kill_at=10 ** 9)
+    events = int(printed.split()[1])
+    new = _files(tmp_path / 'new')
+    assert old.keys() == new.keys()
+    changed = {name for name in old if old[name] != new[name]}
+    assert len(changed) >= 8
+
+    rng = random.Random(6)
+    mixed = 0
+    for iteration in range(ITERATIONS):
+        out = tmp_path / f'run{iteration}'
+        shutil.copytree(tmp_path / 'old', out)
+        if iteration % 2:
+            # spread the kills over the whole run, and a little beyond
+            _generate(src, out, kill_after=rng.uniform(0, duration * 1.2))
+        else:
+            # or at one of its file operations
+            _generate(src, out, kill_at=rng.randint(1, events))
+        seen = set()
+        for path in sorted(out.rglob('*')):
+            if not path.is_file():
+                continue
+            name = str(path.relative_to(out))
+            if path.name.endswith(TEMP_SUFFIX):
+                continue  # a temporary file, not yet renamed: removed below
+            assert name in old, f'{name}: unexpected file'
+            data = path.read_bytes()
+            if path.name == MANIFEST:
+                _check_manifest(path)
+                continue
+            assert data in (old[name], new[name]), f'{name}: neither old nor new'
+            if name in changed:
+                seen.add(data == new[name])
+        mixed += seen == {True, False}
+        # the next generation completes the work and leaves nothing behind
+        _generate_here(src, out)
+        assert _files(out) == new
+    # the user's files beside the models were not touched
+    assert {k: v for k, v in _files(src).items() if not k.endswith('robmosys.yaml')} == \
+        {k: v for k, v in users.items() if not k.endswith('robmosys.yaml')}
+    # else the kills fell outside the writing and tested nothing
+    print(f'{mixed} of {ITERATIONS} kills fell amid {events} file operations in {duration:.3f} s')
+    assert mixed >= 2, f'only {mixed} of {ITERATIONS} kills fell amid the writing'
+
+
+def test_writer_replaces_in_the_same_folder(tmp_path, monkeypatch):
+    """The new content goes to a temporary file beside the target, then os.replace."""
+    from colcon_robmosys.generate import writer
+    calls = []
+    real_replace = os.replace
+
+    def replace(source, target):
+        calls.append((Path(source), Path(target)))
+        assert Path(target).read_bytes() == b'# Generated by colcon-robmosys\nold\n'
+        real_replace(source, target)
+
+    target = tmp_path / 'deep' / 'file.txt'
+    target.parent.mkdir()
+    target.write_bytes(b'# Generated by colcon-robmosys\nold\n')
+    monkeypatch.setattr(writer.os, 'replace', replace)
+    assert writer.write_generated(target, b'# Generated by colcon-robmosys\nnew\n')
+    [(source, replaced)] = calls
+    assert replaced == target and source.parent == target.parent
+    assert source.name.endswith(TEMP_SUFFIX) and not source.exists()
+    assert target.read_bytes() == b'# Generated by colcon-robmosys\nnew\n'
