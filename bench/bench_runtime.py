@@ -17,8 +17,14 @@ services, in alternation. Two loads:
 Under both, the CPU time each process uses per message: on a busy machine rates and
 latencies follow the load of other processes, CPU time per message much less.
 
-Prints generated / hand-written ratios for each figure. C++ is compared where
-rclcpp exists; here it is skipped with the reason.
+The same comparison in C++ where rclcpp, rclcpp_lifecycle and rclcpp_components
+exist (a ROS 2 install on AMENT_PREFIX_PATH or CMAKE_PREFIX_PATH): the same two
+models with ``language: cpp``, their user code in ``generated_cpp/``, against the
+hand-written rclcpp_lifecycle pair of the ament_cmake package ``handwritten_cpp/``,
+all built by the same colcon build. Without rclcpp the C++ pairs are skipped and
+the reason is printed.
+
+Prints generated / hand-written ratios for each figure, per language.
 
     make bench-runtime                     # or: .venv/bin/python bench/bench_runtime.py
 """
@@ -31,23 +37,28 @@ from dataclasses import dataclass
 import json
 import os
 from pathlib import Path
+import shutil
 import statistics
 import sys
 import tempfile
 import time
-from typing import Any, Sequence
+from typing import Any, Mapping, Sequence
 
 import yaml
 
 # benchlib first: it puts the harness of the tests on the path
 from benchlib import print_end, print_machine, ratio, REPO, table
-from colcon_robmosys.errors import RobmosysError
-from colcon_robmosys.model import load_workspace
-from colcon_robmosys.ros2 import plan_package
+from colcon_robmosys.task.build import missing_prefix_packages
 from harness import ros_env
 from harness.system import LifecycleDriver, wait_until
 
 HANDWRITTEN = REPO / 'bench' / 'handwritten_pubsub.py'
+#: the ament_cmake package of the hand-written C++ pair
+HANDWRITTEN_CPP = REPO / 'bench' / 'handwritten_cpp'
+#: the user code (implementation files) of the generated C++ pair
+GENERATED_CPP = REPO / 'bench' / 'generated_cpp'
+#: what the C++ pairs need from a ROS 2 install
+CPP_PACKAGES = ('rclcpp', 'rclcpp_lifecycle', 'rclcpp_components')
 TOPIC = '/bench_samples'
 QOS = {'depth': 10, 'reliability': 'reliable', 'durability': 'volatile'}
 METADATA = {'license': 'Apache-2.0',
@@ -111,6 +122,23 @@ LISTENER = {
 }
 
 
+def cpp_model(model: dict[str, Any]) -> dict[str, Any]:
+    """Return the C++ twin of a Python model: its functions are in GENERATED_CPP."""
+    functions = {
+        name: {'description': f'In bench/generated_cpp/{model["name"]}_impl.cpp.'}
+        for name in model['functions']}
+    return {**model, 'package': f'{model["package"]}_cpp', 'language': 'cpp',
+            'functions': functions}
+
+
+TALKER_CPP = cpp_model(TALKER)
+LISTENER_CPP = cpp_model(LISTENER)
+
+#: language -> the kinds of pair compared: generated first, then hand-written
+PAIRS = {'python': ('generated', 'hand-written'),
+         'cpp': ('generated C++', 'hand-written C++')}
+
+
 @dataclass(frozen=True)
 class Run:
     """What one run of a pair measured."""
@@ -126,14 +154,27 @@ class Run:
     cpu_per_received_us: float
 
 
-def write_models(src: Path) -> None:
-    """Write the models of the generated pair into a workspace's src folder."""
-    for model in (TALKER, LISTENER):
-        path = src / str(model['package']) / 'robmosys.yaml'
+def write_models(src: Path, cpp: bool = False) -> None:
+    """Write the packages of the pairs into a workspace's src folder.
+
+    Always the models of the generated Python pair; with ``cpp``, also the models of the
+    generated C++ pair with their implementation files, and the hand-written C++ package.
+    """
+    for model in (TALKER, LISTENER) + ((TALKER_CPP, LISTENER_CPP) if cpp else ()):
+        package = str(model['package'])
+        path = src / package / 'robmosys.yaml'
         path.parent.mkdir(parents=True)
         path.write_text(yaml.safe_dump(
             {'robmosys': 1, 'defaults': METADATA, 'components': [model]}, sort_keys=False),
             encoding='utf-8')
+        if model['language'] == 'cpp':
+            code = src / package / 'src' / package
+            code.mkdir(parents=True)
+            for suffix in ('hpp', 'cpp'):
+                name = f'{model["name"]}_impl.{suffix}'
+                shutil.copyfile(GENERATED_CPP / name, code / name)
+    if cpp:
+        shutil.copytree(HANDWRITTEN_CPP, src / 'bench_handwritten_cpp')
 
 
 def build(root: Path) -> Path:
@@ -148,9 +189,16 @@ def build(root: Path) -> Path:
 
 def commands(kind: str, install: Path, burst: int, warmup: float) -> dict[str, list[str]]:
     """Return the command lines of the talker and the listener of one kind of pair."""
-    if kind == 'generated':
-        talker = [str(install / 'bench_talker' / 'lib' / 'bench_talker' / 'Talker')]
-        listener = [str(install / 'bench_listener' / 'lib' / 'bench_listener' / 'Listener')]
+    if kind in ('generated', 'generated C++'):
+        suffix = '' if kind == 'generated' else '_cpp'
+        talker = [str(install / f'bench_talker{suffix}' / 'lib' / f'bench_talker{suffix}' /
+                      'Talker')]
+        listener = [str(install / f'bench_listener{suffix}' / 'lib' /
+                        f'bench_listener{suffix}' / 'Listener')]
+    elif kind == 'hand-written C++':
+        pubsub = str(install / 'bench_handwritten_cpp' / 'lib' / 'bench_handwritten_cpp' /
+                     'pubsub')
+        talker, listener = [pubsub, 'talker'], [pubsub, 'listener']
     else:
         talker = [sys.executable, str(HANDWRITTEN), 'talker']
         listener = [sys.executable, str(HANDWRITTEN), 'listener']
@@ -241,26 +289,18 @@ def run_pair(cmds: dict[str, list[str]], base_env: dict[str, str], burst: int,
         cpu_per_received_us=1e6 * cpu['listener'] / max(received_rate * measured, 1))
 
 
-def cpp_skip_reason() -> str:
-    """Say why the C++ pair is not compared here (it is compared nowhere yet)."""
-    packages = Path(sys.prefix) / 'share' / 'ament_index' / 'resource_index' / 'packages'
-    missing = [p for p in ('rclcpp', 'rclcpp_lifecycle') if not (packages / p).is_file()]
-    if missing:
-        return (f'{" and ".join(missing)} not installed in {sys.prefix} (not on PyPI); '
-                'run this on a ROS 2 install')
-    with tempfile.TemporaryDirectory(prefix='robmosys-bench-cpp-') as tmp:
-        src = Path(tmp)
-        write_models(src)
-        path = src / 'bench_talker' / 'robmosys.yaml'
-        path.write_text(path.read_text().replace('language: python', 'language: cpp'))
-        result = load_workspace([path])
-        try:
-            result.raise_errors()
-            plan_package(result.workspace, 'bench_talker')
-        except RobmosysError as error:
-            return f'the C++ generator cannot generate the pair: {error}'
-    return 'rclcpp and the C++ generator exist, but the C++ pair of this benchmark is ' \
-        'not written yet'
+def cpp_skip_reason(environ: Mapping[str, str] | None = None) -> str | None:
+    """Say why the C++ pairs cannot be built here, or None when they can.
+
+    They can where a prefix (this environment's, or one on AMENT_PREFIX_PATH or
+    CMAKE_PREFIX_PATH) provides rclcpp, rclcpp_lifecycle and rclcpp_components, which
+    is what colcon-robmosys's build task looks for before it builds a C++ component.
+    """
+    missing = missing_prefix_packages(CPP_PACKAGES, [sys.prefix], environ)
+    if not missing:
+        return None
+    return (f'{", ".join(missing)} not found in {sys.prefix} nor on AMENT_PREFIX_PATH or '
+            'CMAKE_PREFIX_PATH (not on PyPI); run this with a ROS 2 install sourced')
 
 
 METRICS = (  # mode, label, key, higher is better
@@ -280,21 +320,24 @@ def _value(run: Run, key: str) -> float:
     return run.latency_us[key] if key in run.latency_us else float(getattr(run, key))
 
 
-def report(runs: dict[tuple[str, str], list[Run]], burst: int) -> str:
-    """Return each figure's best value over the rounds, per pair, and their ratio."""
+def report(runs: dict[tuple[str, str], list[Run]], burst: int,
+           kinds: tuple[str, str] = PAIRS['python']) -> str:
+    """Return each figure's best value over the rounds, per pair, and their ratio.
+
+    ``kinds`` names the generated pair and the hand-written one in ``runs``.
+    """
     rows = []
     for mode, label, key, higher in METRICS:
-        if (mode, 'generated') not in runs:
+        if (mode, kinds[0]) not in runs:
             continue
-        values = {kind: [_value(r, key) for r in runs[(mode, kind)]]
-                  for kind in ('generated', 'hand-written')}
+        values = {kind: [_value(r, key) for r in runs[(mode, kind)]] for kind in kinds}
         pick = max if higher else min
-        generated, handwritten = pick(values['generated']), pick(values['hand-written'])
+        generated, handwritten = pick(values[kinds[0]]), pick(values[kinds[1]])
         rows.append([
             f'{mode} ({"1" if mode == "latency" else burst}/10 ms)', label,
             f'{generated:.0f}', f'{handwritten:.0f}', ratio(generated, handwritten),
-            ' '.join(f'{v:.0f}' for v in values['generated']),
-            ' '.join(f'{v:.0f}' for v in values['hand-written']),
+            ' '.join(f'{v:.0f}' for v in values[kinds[0]]),
+            ' '.join(f'{v:.0f}' for v in values[kinds[1]]),
         ])
     return table(['load', 'figure', 'generated', 'hand-written', 'ratio gen/hand',
                   'generated per round', 'hand-written per round'], rows)
@@ -314,30 +357,40 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument('--loads', nargs='+', choices=('latency', 'throughput'),
                         default=['latency', 'throughput'],
                         help='which loads to run (default: both)')
+    parser.add_argument('--languages', nargs='+', choices=tuple(PAIRS),
+                        default=list(PAIRS),
+                        help='which pairs to compare (default: both; C++ only where '
+                             'rclcpp exists)')
     args = parser.parse_args(argv)
-    print_machine('run time: generated Python pub/sub pair vs hand-written rclpy pair')
+    print_machine('run time: generated pub/sub pairs vs hand-written ones (Python; C++ '
+                  'where rclcpp exists)')
+    skip_cpp = cpp_skip_reason() if 'cpp' in args.languages else 'not asked for'
+    languages = [lang for lang in args.languages if lang == 'python' or not skip_cpp]
     with tempfile.TemporaryDirectory(prefix='robmosys-bench-run-') as tmp:
         root = Path(tmp)
-        write_models(root / 'src')
+        write_models(root / 'src', cpp='cpp' in languages)
         install = build(root)
         base_env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
         runs: dict[tuple[str, str], list[Run]] = {}
         for round_ in range(args.rounds):
-            # alternate which pair goes first, so that a drift of the load hits both
-            kinds = ['generated', 'hand-written'][::1 if round_ % 2 == 0 else -1]
-            for mode in args.loads:
-                burst = 1 if mode == 'latency' else args.burst
-                for kind in kinds:
-                    cmds = commands('generated' if kind == 'generated' else 'handwritten',
-                                    install, burst, args.warmup)
-                    run = run_pair(cmds, base_env, burst, args.seconds, args.warmup)
-                    runs.setdefault((mode, kind), []).append(run)
-                    print(f'  round {round_ + 1}, {mode}, {kind}: {run.received} received, '
-                          f'p50 {run.latency_us["p50"]:.0f} us, '
-                          f'{run.received_rate:.0f}/s received, listener CPU '
-                          f'{run.cpu_per_received_us:.0f} us/message', flush=True)
-    print(report(runs, args.burst))
-    print(f'C++: skipped: {cpp_skip_reason()}')
+            for language in languages:
+                # alternate which pair goes first, so that a drift of the load hits both
+                kinds = PAIRS[language][::1 if round_ % 2 == 0 else -1]
+                for mode in args.loads:
+                    burst = 1 if mode == 'latency' else args.burst
+                    for kind in kinds:
+                        cmds = commands(kind, install, burst, args.warmup)
+                        run = run_pair(cmds, base_env, burst, args.seconds, args.warmup)
+                        runs.setdefault((mode, kind), []).append(run)
+                        print(f'  round {round_ + 1}, {mode}, {kind}: {run.received} '
+                              f'received, p50 {run.latency_us["p50"]:.0f} us, '
+                              f'{run.received_rate:.0f}/s received, listener CPU '
+                              f'{run.cpu_per_received_us:.0f} us/message', flush=True)
+    for language in languages:
+        print(f'{"Python" if language == "python" else "C++"}: generated / hand-written')
+        print(report(runs, args.burst, PAIRS[language]))
+    if 'cpp' not in languages:
+        print(f'C++: skipped: {skip_cpp}')
     print_end()
     return 0
 

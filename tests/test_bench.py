@@ -14,6 +14,7 @@ from pathlib import Path
 import re
 import sys
 
+from catkin_pkg.package import parse_package
 import pytest
 
 BENCH = Path(__file__).resolve().parent.parent / 'bench'
@@ -22,6 +23,10 @@ sys.path.insert(0, str(BENCH))
 import bench_colcon  # noqa: E402
 import bench_generation  # noqa: E402
 import bench_runtime  # noqa: E402
+from colcon_robmosys.generate import generate_package  # noqa: E402
+from colcon_robmosys.model import find_model_files, load_workspace  # noqa: E402
+from colcon_robmosys.model.index import InterfaceIndex  # noqa: E402
+from colcon_robmosys.ros2 import plan_package  # noqa: E402
 from conftest import requires_ros  # noqa: E402
 import synthetic  # noqa: E402
 
@@ -84,3 +89,43 @@ def test_runtime_benchmark_prints_ratios(capsys):
         assert received and int(received.group(1)) >= 2, out
     assert len(re.findall(rf'^\| throughput .* {RATIO} +\|', out, re.MULTILINE)) == 4, out
     assert 'C++: skipped: ' in out
+
+
+def test_cpp_pairs_are_skipped_without_rclcpp_and_run_with_it(tmp_path):
+    """What decides whether the C++ pairs are built: rclcpp & co. in a prefix."""
+    reason = bench_runtime.cpp_skip_reason({})
+    if reason is None:
+        pytest.skip(f'{sys.prefix} itself has rclcpp, rclcpp_lifecycle and rclcpp_components')
+    assert 'rclcpp, rclcpp_lifecycle, rclcpp_components not found' in reason
+    index = tmp_path / 'share' / 'ament_index' / 'resource_index' / 'packages'
+    index.mkdir(parents=True)
+    for package in ('rclcpp', 'rclcpp_lifecycle'):
+        (index / package).touch()
+    reason = bench_runtime.cpp_skip_reason({'AMENT_PREFIX_PATH': str(tmp_path)})
+    assert reason and reason.startswith('rclcpp_components not found'), reason
+    (index / 'rclcpp_components').touch()
+    assert bench_runtime.cpp_skip_reason({'CMAKE_PREFIX_PATH': str(tmp_path)}) is None
+
+
+def test_cpp_pairs_are_written_to_match(tmp_path):
+    """The C++ models generate, and the committed user code fits the generated classes."""
+    bench_runtime.write_models(tmp_path / 'src', cpp=True)
+    result = load_workspace(find_model_files([tmp_path / 'src']),
+                            InterfaceIndex([Path(sys.prefix)]))
+    result.raise_errors()
+    for model in (bench_runtime.TALKER_CPP, bench_runtime.LISTENER_CPP):
+        package, name = model['package'], model['name']
+        generate_package(plan_package(result.workspace, package), tmp_path / 'out' / package)
+        skeleton = (tmp_path / 'out' / package / 'src-skel' / package /
+                    f'{name}_impl.hpp').read_text()
+        ours = (tmp_path / 'src' / package / 'src' / package / f'{name}_impl.hpp').read_text()
+        assert ours == (bench_runtime.GENERATED_CPP / f'{name}_impl.hpp').read_text()
+        overrides = re.compile(r'^ +(void \w+\(.*\)) override;$', re.MULTILINE)
+        assert overrides.findall(ours) == overrides.findall(skeleton) != []
+    handwritten = parse_package(tmp_path / 'src' / 'bench_handwritten_cpp')
+    assert handwritten.name == 'bench_handwritten_cpp'
+    depends = {d.name for d in handwritten.build_depends}
+    assert depends >= {'rclcpp', 'rclcpp_lifecycle', 'std_msgs'}
+    cmds = bench_runtime.commands('hand-written C++', tmp_path / 'install', 1, 0.1)
+    assert cmds['talker'][:2] == [str(tmp_path / 'install' / 'bench_handwritten_cpp' / 'lib' /
+                                      'bench_handwritten_cpp' / 'pubsub'), 'talker']
