@@ -68,25 +68,30 @@ def py_literal(value: Any, indent: int, prefix: int = 0) -> str:
     inner = indent + 4
     pad = ' ' * inner
     if isinstance(value, str):
-        lines = [pad + part for part in _str_parts(value, LINE_LENGTH - inner)]
+        lines = [pad + part for part in split_literal(value, LINE_LENGTH - inner, repr)]
         return '(\n' + '\n'.join(lines) + '\n' + ' ' * indent + ')'
     lines = [pad + py_literal(item, inner) + ',' for item in value]
     return '[\n' + '\n'.join(lines) + '\n' + ' ' * indent + ']'
 
 
-def _str_parts(text: str, width: int) -> list[str]:
-    """Split a string into literals of at most ``width`` characters each."""
+def split_literal(text: str, width: int,
+                  quote: Callable[[str], str]) -> list[str]:
+    """Split text into quoted literals of at most ``width`` characters each.
+
+    Python and C++ join adjacent literals back into the text. A split falls
+    between characters, never inside an escape, and at a space where one
+    allows it, so that words stay whole; a character whose escape alone is
+    wider than ``width`` still gets a literal of its own.
+    """
     parts, start = [], 0
     while start < len(text):
         end = start + 1
-        # at least one character per part, however long its escape is
-        while end < len(text) and len(repr(text[start:end + 1])) <= width:
+        while end < len(text) and len(quote(text[start:end + 1])) <= width:
             end += 1
-        # words stay whole where a space allows it
         space = text.rfind(' ', start + 1, end)
         if end < len(text) and space != -1:
             end = space + 1
-        parts.append(repr(text[start:end]))
+        parts.append(quote(text[start:end]))
         start = end
     return parts
 

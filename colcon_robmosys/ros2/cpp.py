@@ -23,7 +23,7 @@ from typing import Any
 
 from colcon_robmosys.errors import RobmosysError
 # a leaf module of escaping functions: defaults are C++ expressions decided here
-from colcon_robmosys.generate.filters import cpp_str
+from colcon_robmosys.generate.filters import cpp_str, split_literal
 from colcon_robmosys.model.qos import resolve_qos
 from colcon_robmosys.model.types import (
     Activity, Component, InterfaceKind, InterfaceRef, Parameter, Pattern, Port, QoS)
@@ -127,18 +127,14 @@ def _cpp_value(value: Any, type_: str) -> str:
 def string_lines(target: str, text: str, width: int = 72) -> list[str]:
     """Assign a string literal to target, split into lines cpplint accepts.
 
-    Adjacent literals are joined by the compiler; the split falls between
-    characters, never inside an escape, and no literal is wider than width.
+    Adjacent literals are joined by the compiler (see split_literal); no
+    literal is wider than width.
     """
-    chunks = ['']
-    for char in text:
-        if len(cpp_str(chunks[-1] + char)) > width:
-            chunks.append('')
-        chunks[-1] += char
-    if len(chunks) == 1:
+    literals = split_literal(text, width, cpp_str)
+    if len(literals) <= 1:
         return [f'{target} = {cpp_str(text)};']
-    return [f'{target} ='] + [f'  {cpp_str(c)}' for c in chunks[:-1]] + \
-        [f'  {cpp_str(chunks[-1])};']
+    return [f'{target} ='] + [f'  {literal}' for literal in literals[:-1]] + \
+        [f'  {literals[-1]};']
 
 
 def _default_lines(parameter: Parameter, ctype: str) -> list[str]:
