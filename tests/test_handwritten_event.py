@@ -54,5 +54,5 @@ def test_events_of_a_hand_written_server_reach_a_generated_component(
         assert notified and all(int(level) >= THRESHOLD for level, _ in notified)
         assert 'never activation: 0 event(s), ended: False' in watcher.output()
         assert driver.transition('/watcher', 'deactivate'), watcher.output()
-    for process in (sensor, watcher):
-        assert 'Traceback' not in process.output(), process.output()
+        for process in (sensor, watcher):
+            assert 'Traceback' not in process.output(), process.output()

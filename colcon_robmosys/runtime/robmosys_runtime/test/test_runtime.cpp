@@ -1,9 +1,8 @@
 // Copyright 2026 The colcon-robmosys authors
 // Licensed under the Apache License, Version 2.0
 
-#include <gtest/gtest.h>
-
 #include <atomic>
+#include <cstdio>
 #include <chrono>
 #include <functional>
 #include <memory>
@@ -32,6 +31,19 @@ using BasicTypes = test_msgs::srv::BasicTypes;
 namespace
 {
 
+int failures = 0;
+
+/// Count a failed check, and tell where it is (the test goes on, like EXPECT_TRUE).
+void check(bool holds, const char * what, int line)
+{
+  if (!holds) {
+    std::fprintf(stderr, "test_runtime.cpp:%d: check failed: %s\n", line, what);
+    ++failures;
+  }
+}
+
+#define EXPECT(condition) check((condition), #condition, __LINE__)
+
 bool wait_until(const std::function<bool()> & condition, std::chrono::milliseconds timeout = 10s)
 {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
@@ -44,26 +56,35 @@ bool wait_until(const std::function<bool()> & condition, std::chrono::millisecon
   return condition();
 }
 
-/// rclcpp, and an executor spinning in a thread.
-class Runtime : public ::testing::Test
+/// rclcpp, and an executor spinning in a thread, for one test.
+class Runtime
 {
-protected:
-  void SetUp() override
+public:
+  Runtime()
   {
     rclcpp::init(0, nullptr);
     executor_ = std::make_shared<rclcpp::executors::MultiThreadedExecutor>(
       rclcpp::ExecutorOptions(), 4);
   }
 
-  void TearDown() override
+  ~Runtime()
+  {
+    stop();
+    executor_.reset();
+    rclcpp::shutdown();
+  }
+
+  /// Stop spinning, before the nodes and ports of a test go.
+  void stop()
   {
     executor_->cancel();
     if (spinner_.joinable()) {
       spinner_.join();
     }
-    executor_.reset();
-    rclcpp::shutdown();
   }
+
+  Runtime(const Runtime &) = delete;
+  Runtime & operator=(const Runtime &) = delete;
 
   template<typename NodeT>
   void spin(const std::shared_ptr<NodeT> & node)
@@ -76,6 +97,7 @@ protected:
     spinner_ = std::thread([this]() {executor_->spin();});
   }
 
+private:
   std::shared_ptr<rclcpp::executors::MultiThreadedExecutor> executor_;
   std::thread spinner_;
 };
@@ -123,8 +145,9 @@ protected:
 
 }  // namespace
 
-TEST_F(Runtime, query_and_action_clients)
+void query_client()
 {
+  Runtime runtime;
   auto server = std::make_shared<rclcpp::Node>("server");
   auto service = server->create_service<BasicTypes>(
     "add", [](
@@ -138,20 +161,22 @@ TEST_F(Runtime, query_and_action_clients)
   robmosys_runtime::QueryClient<BasicTypes> query(
     client_node->create_client<BasicTypes>("add", rclcpp::ServicesQoS(), group),
     [&answered](const BasicTypes::Response & response) {answered = response.int32_value;});
-  spin(server);
-  spin(client_node);
-  start();
-  ASSERT_TRUE(query.wait_for_service(10s));
+  runtime.spin(server);
+  runtime.spin(client_node);
+  runtime.start();
+  EXPECT(query.wait_for_service(10s));
   BasicTypes::Request request;
   request.int32_value = 5;
-  EXPECT_EQ(query.call(request)->int32_value, 1005);
+  EXPECT(query.call(request)->int32_value == 1005);
   request.int32_value = 7;
   query.call_async(request);
-  EXPECT_TRUE(wait_until([&answered]() {return answered == 1007;}));
+  EXPECT(wait_until([&answered]() {return answered == 1007;}));
+  runtime.stop();
 }
 
-TEST_F(Runtime, events_reach_the_activations_whose_condition_holds)
+void events_reach_the_activations_whose_condition_holds()
 {
+  Runtime runtime;
   auto sensor = std::make_shared<rclcpp::Node>("sensor");
   auto watcher = std::make_shared<rclcpp::Node>("watcher");
   robmosys_runtime::EventServer<Fibonacci> server(
@@ -163,52 +188,73 @@ TEST_F(Runtime, events_reach_the_activations_whose_condition_holds)
   robmosys_runtime::EventClient<Fibonacci> client(
     watcher.get(), "event", rclcpp::QoS(10),
     [&events](const Fibonacci::Feedback &) {++events;});
-  spin(sensor);
-  spin(watcher);
-  start();
-  ASSERT_TRUE(client.wait_for_server(10s));
+  runtime.spin(sensor);
+  runtime.spin(watcher);
+  runtime.start();
+  EXPECT(client.wait_for_server(10s));
   Fibonacci::Goal activation;
   activation.order = 10;
   auto handle = client.activate(activation);
-  ASSERT_TRUE(wait_until([&handle]() {return static_cast<bool>(handle->goal_handle);}));
+  EXPECT(wait_until([&handle]() {return static_cast<bool>(handle->goal_handle);}));
   Fibonacci::Feedback low, high;
   low.sequence = {3};
   high.sequence = {12};
-  EXPECT_EQ(server.fire(low), 0u);
-  EXPECT_EQ(server.fire(high), 1u);
-  EXPECT_TRUE(wait_until([&events]() {return events == 1;}));
-  EXPECT_THROW(client.activate(activation, true), std::invalid_argument);
+  EXPECT(server.fire(low) == 0u);
+  EXPECT(server.fire(high) == 1u);
+  EXPECT(wait_until([&events]() {return events == 1;}));
+  bool refused = false;
+  try {
+    client.activate(activation, true);
+  } catch (const std::invalid_argument &) {
+    refused = true;
+  }
+  EXPECT(refused);
   client.deactivate(handle);
-  EXPECT_TRUE(handle->ended);
+  EXPECT(handle->ended);
+  runtime.stop();
 }
 
-TEST_F(Runtime, component_ports_live_from_configure_to_cleanup)
+void component_ports_live_from_configure_to_cleanup()
 {
+  Runtime runtime;
   auto node = std::make_shared<Counter>();
-  spin(node);
-  start();
-  EXPECT_FALSE(node->pCount);
-  ASSERT_EQ(node->configure().id(), lifecycle_msgs::msg::State::PRIMARY_STATE_INACTIVE);
-  ASSERT_TRUE(node->pCount);
+  runtime.spin(node);
+  runtime.start();
+  EXPECT(node->pCount == nullptr);
+  EXPECT(node->configure().id() == lifecycle_msgs::msg::State::PRIMARY_STATE_INACTIVE);
+  EXPECT(node->pCount != nullptr);
   std::this_thread::sleep_for(100ms);
-  EXPECT_EQ(node->count, 0);  // inactive: the timer does not run
+  EXPECT(node->count == 0);  // inactive: the timer does not run
   node->activate();
-  EXPECT_TRUE(node->is_active());
-  EXPECT_TRUE(wait_until([&node]() {return node->count >= 4;}));  // a failing tick went on
+  EXPECT(node->is_active());
+  EXPECT(wait_until([&node]() {return node->count >= 4;}));  // a failing tick went on
   node->deactivate();
   const int stopped = node->count;
   std::this_thread::sleep_for(100ms);
-  EXPECT_LE(node->count, stopped + 1);
+  EXPECT(node->count <= stopped + 1);
   node->cleanup();
-  EXPECT_FALSE(node->pCount);
+  EXPECT(node->pCount == nullptr);
+  runtime.stop();
 }
 
-TEST_F(Runtime, a_throwing_hook_fails_its_transition)
+void a_throwing_hook_fails_its_transition()
 {
+  Runtime runtime;
   auto node = std::make_shared<Counter>();
   node->fail_configure = true;
-  spin(node);
-  start();
-  EXPECT_EQ(node->configure().id(), lifecycle_msgs::msg::State::PRIMARY_STATE_UNCONFIGURED);
-  EXPECT_FALSE(node->pCount);
+  runtime.spin(node);
+  runtime.start();
+  EXPECT(node->configure().id() == lifecycle_msgs::msg::State::PRIMARY_STATE_UNCONFIGURED);
+  EXPECT(node->pCount == nullptr);
+  runtime.stop();
+}
+
+int main()
+{
+  query_client();
+  events_reach_the_activations_whose_condition_holds();
+  component_ports_live_from_configure_to_cleanup();
+  a_throwing_hook_fails_its_transition();
+  std::fprintf(stderr, "%d check(s) failed\n", failures);
+  return failures == 0 ? 0 : 1;
 }
