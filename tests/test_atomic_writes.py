@@ -21,11 +21,11 @@ import subprocess
 import sys
 import time
 
-from colcon_robmosys.generators import generate_package, MANIFEST, read_manifest
-from colcon_robmosys.generators.writer import TEMP_SUFFIX
 from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.generators import generate_package, MANIFEST, read_manifest
 from colcon_robmosys.generators import plan_package
+from colcon_robmosys.generators.writer import TEMP_SUFFIX
 from conftest import TEST_WORKSPACE
 
 #: Generates every model of argv[1] into argv[2]/<package>; says 'go' once
@@ -38,9 +38,9 @@ import os
 import signal
 import sys
 from pathlib import Path
-from colcon_robmosys.generators import generate_package
 from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
 
 src, out = Path(sys.argv[1]), Path(sys.argv[2])

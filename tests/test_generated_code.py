@@ -14,9 +14,9 @@ import sys
 import pytest
 import yaml
 
-from colcon_robmosys.generators import generate_package
 from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
 from conftest import TEST_WORKSPACE
 from harness.system import read_launch_file

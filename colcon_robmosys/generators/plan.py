@@ -106,7 +106,7 @@ class UserRow:
     required_class: str = ''
 
 
-class _Attributes(dict):  # type: ignore[type-arg]
+class _Attributes(dict[str, Any]):
     """Format paths with the attributes of a context."""
 
     def __init__(self, context: Any) -> None:

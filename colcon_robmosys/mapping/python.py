@@ -52,6 +52,13 @@ IMPORTS: dict[Entity, dict[str, frozenset[str]]] = {
         'action_msgs.msg': frozenset({'GoalStatus'})},
 }
 
+#: entity -> the node method that destroys it (others have a destroy())
+DESTROY = {
+    Entity.PUBLISHER: 'destroy_lifecycle_publisher',
+    Entity.SUBSCRIPTION: 'destroy_subscription',
+    Entity.SERVICE: 'destroy_service',
+}
+
 #: entity -> packages its code needs at run time
 EXEC_DEPENDS = {Entity.EVENT_CLIENT: ('action_msgs',)}
 
@@ -91,6 +98,8 @@ class PyPort:
     activity: str | None
     callback: str
     functions: tuple[str, ...]
+    #: the node method that destroys it, if it has no destroy() of its own
+    destroy: str | None
 
 
 @dataclass(frozen=True)
@@ -305,7 +314,8 @@ def _port(port: PortPlan, type_name: str) -> PyPort:
         # query and action ports use the QoS of services and actions
         qos=qos_expression(port.qos) if port.kind.topic_qos else None,
         qos_const=f'QOS_{port.name.upper()}', activity=port.activity,
-        callback=f'_on_{port.name}', functions=port.functions)
+        callback=f'_on_{port.name}', functions=port.functions,
+        destroy=DESTROY.get(port.kind.entity))
 
 
 def _range(parameter: Parameter) -> PyRange | None:
