@@ -29,10 +29,10 @@ import time
 from typing import Sequence
 
 from benchlib import print_end, print_machine, ratio, spread, table
-from colcon_robmosys.generate import create_missing_user_files, generate_package
-from colcon_robmosys.model import find_model_files, load_workspace
-from colcon_robmosys.model.index import InterfaceIndex
-from colcon_robmosys.ros2 import plan_package
+from colcon_robmosys.check import find_model_files, load_workspace
+from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.generators import create_missing_user_files, generate_package
+from colcon_robmosys.generators import plan_package
 from synthetic import ros_index, write_workspace
 
 

@@ -20,10 +20,10 @@ from typing import Any
 
 import yaml
 
-from colcon_robmosys.generate import create_missing_user_files, generate_package
-from colcon_robmosys.model import find_model_files, load_workspace
-from colcon_robmosys.model.index import InterfaceIndex
-from colcon_robmosys.ros2 import plan_package
+from colcon_robmosys.check import find_model_files, load_workspace
+from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.generators import create_missing_user_files, generate_package
+from colcon_robmosys.generators import plan_package
 
 GROUP = 10
 METADATA = {

@@ -21,11 +21,11 @@ import subprocess
 import sys
 import time
 
-from colcon_robmosys.generate import generate_package, MANIFEST, read_manifest
-from colcon_robmosys.generate.writer import TEMP_SUFFIX
-from colcon_robmosys.model import find_model_files, load_workspace
-from colcon_robmosys.model.index import InterfaceIndex
-from colcon_robmosys.ros2 import plan_package
+from colcon_robmosys.check import find_model_files, load_workspace
+from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.generators import generate_package, MANIFEST, read_manifest
+from colcon_robmosys.generators import plan_package
+from colcon_robmosys.generators.writer import TEMP_SUFFIX
 from conftest import TEST_WORKSPACE
 
 #: Generates every model of argv[1] into argv[2]/<package>; says 'go' once
@@ -38,10 +38,10 @@ import os
 import signal
 import sys
 from pathlib import Path
-from colcon_robmosys.generate import generate_package
-from colcon_robmosys.model import find_model_files, load_workspace
-from colcon_robmosys.model.index import InterfaceIndex
-from colcon_robmosys.ros2 import plan_package
+from colcon_robmosys.check import find_model_files, load_workspace
+from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.generators import generate_package
+from colcon_robmosys.generators import plan_package
 
 src, out = Path(sys.argv[1]), Path(sys.argv[2])
 result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
@@ -184,7 +184,7 @@ def test_killed_generation_leaves_whole_files(tmp_path):
 
 def test_writer_replaces_in_the_same_folder(tmp_path, monkeypatch):
     """The new content goes to a temporary file beside the target, then os.replace."""
-    from colcon_robmosys.generate import writer
+    from colcon_robmosys.generators import writer
     calls = []
     real_replace = os.replace
 

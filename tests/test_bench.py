@@ -23,10 +23,10 @@ sys.path.insert(0, str(BENCH))
 import bench_colcon  # noqa: E402
 import bench_generation  # noqa: E402
 import bench_runtime  # noqa: E402
-from colcon_robmosys.generate import generate_package  # noqa: E402
-from colcon_robmosys.model import find_model_files, load_workspace  # noqa: E402
-from colcon_robmosys.model.index import InterfaceIndex  # noqa: E402
-from colcon_robmosys.ros2 import plan_package  # noqa: E402
+from colcon_robmosys.check import find_model_files, load_workspace  # noqa: E402
+from colcon_robmosys.check.index import InterfaceIndex  # noqa: E402
+from colcon_robmosys.generators import generate_package  # noqa: E402
+from colcon_robmosys.generators import plan_package  # noqa: E402
 from conftest import requires_ros  # noqa: E402
 import synthetic  # noqa: E402
 

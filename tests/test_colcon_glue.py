@@ -187,7 +187,7 @@ def test_colcon_uses_the_installed_package_and_its_templates(tmp_path):
     from harness.ros_env import loopback_env, run
     import sys
     code = ('import colcon_robmosys\n'
-            'from colcon_robmosys.generate.render import templates_dir\n'
+            'from colcon_robmosys.generators.render import templates_dir\n'
             'print(colcon_robmosys.__file__)\n'
             'print(templates_dir())\n')
     result = run([sys.executable, '-c', code], env=loopback_env(1), cwd=tmp_path, timeout=60)

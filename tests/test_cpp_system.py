@@ -20,7 +20,7 @@ import sys
 
 import pytest
 
-from colcon_robmosys.ros2.cpp import CPP_CLIENT_PACKAGES
+from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
 from colcon_robmosys.task.build import missing_prefix_packages
 from conftest import requires_ros
 from harness import ros_env

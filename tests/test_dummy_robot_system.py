@@ -20,8 +20,8 @@ import sys
 import pytest
 from test_cpp_system import requires_rclcpp
 
-from colcon_robmosys.model import find_model_files, load_workspace
-from colcon_robmosys.model.index import InterfaceIndex
+from colcon_robmosys.check import find_model_files, load_workspace
+from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.model.types import Component, Instance, Language, System
 from conftest import requires_ros, TEST_WORKSPACE
 from harness.ros_env import background

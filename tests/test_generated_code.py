@@ -14,10 +14,10 @@ import sys
 import pytest
 import yaml
 
-from colcon_robmosys.generate import generate_package
-from colcon_robmosys.model import find_model_files, load_workspace
-from colcon_robmosys.model.index import InterfaceIndex
-from colcon_robmosys.ros2 import plan_package
+from colcon_robmosys.check import find_model_files, load_workspace
+from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.generators import generate_package
+from colcon_robmosys.generators import plan_package
 from conftest import TEST_WORKSPACE
 from harness.system import read_launch_file
 
@@ -237,7 +237,7 @@ def test_long_model_texts_fit_the_linters_and_keep_their_values(tmp_path):
     'Summary.\n\nBody with \\ and """ and a long line ' + 'x' * 120 + '.',
 ])
 def test_docstrings_keep_the_model_text_and_pass_pep257(tmp_path, text):
-    from colcon_robmosys.generate.filters import py_docstring
+    from colcon_robmosys.generators.filters import py_docstring
     source = f'"""Module."""\n\n\nclass C:\n    {py_docstring(text, 4)}\n'
     tree = ast.parse(source)
     assert ' '.join(ast.get_docstring(tree.body[1]).split()) == ' '.join(text.split())

@@ -17,14 +17,14 @@ import sys
 
 import pytest
 
+from colcon_robmosys.check import find_model_files, load_workspace
+from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.errors import RobmosysError
-from colcon_robmosys.generate import create_missing_user_files, generate_package
-from colcon_robmosys.generate.filters import cpp_comment, cpp_str
-from colcon_robmosys.model import find_model_files, load_workspace
-from colcon_robmosys.model.index import InterfaceIndex
+from colcon_robmosys.generators import create_missing_user_files, generate_package
+from colcon_robmosys.generators import plan_package
+from colcon_robmosys.generators.filters import cpp_comment, cpp_str
+from colcon_robmosys.mapping.cpp import string_lines
 from colcon_robmosys.model.types import Component, Language
-from colcon_robmosys.ros2 import plan_package
-from colcon_robmosys.ros2.cpp import string_lines
 from conftest import TEST_WORKSPACE
 
 GOLDEN = Path(__file__).resolve().parent / 'golden'

@@ -22,12 +22,12 @@ import xml.etree.ElementTree as ET
 import pytest
 import yaml
 
-from colcon_robmosys.generate import (
+from colcon_robmosys.check import find_model_files, load_workspace
+from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.generators import (
     create_missing_user_files, generate_package, MANIFEST, read_manifest)
-from colcon_robmosys.generate.filters import cmake_str, cpp_str, yaml_value
-from colcon_robmosys.model import find_model_files, load_workspace
-from colcon_robmosys.model.index import InterfaceIndex
-from colcon_robmosys.ros2 import plan_package
+from colcon_robmosys.generators import plan_package
+from colcon_robmosys.generators.filters import cmake_str, cpp_str, yaml_value
 
 PLAIN = 'Plain words'
 

@@ -9,8 +9,8 @@ import time
 
 import pytest
 
+from colcon_robmosys.check import load_model_file
 from colcon_robmosys.errors import Location, RobmosysError
-from colcon_robmosys.model import load_model_file
 from colcon_robmosys.model.loader import (
     load_file, load_text, MAX_ALIASED_VALUES, MAX_MODEL_BYTES, MAX_MODEL_DEPTH,
     MAX_MODEL_NODES)

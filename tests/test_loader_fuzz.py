@@ -18,8 +18,8 @@ from hypothesis import given, HealthCheck, settings, strategies as st
 import pytest
 import yaml
 
-from colcon_robmosys.model import load_workspace
-from colcon_robmosys.model.index import InterfaceIndex
+from colcon_robmosys.check import load_workspace
+from colcon_robmosys.check.index import InterfaceIndex
 from harness.fake_ament import fake_ament_index
 
 VALID = Path(__file__).parent / 'models' / 'valid'

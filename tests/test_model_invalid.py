@@ -23,8 +23,8 @@ import re
 
 import pytest
 
-from colcon_robmosys.model import load_workspace
-from colcon_robmosys.model.index import InterfaceIndex
+from colcon_robmosys.check import load_workspace
+from colcon_robmosys.check.index import InterfaceIndex
 from harness.fake_ament import fake_ament_index
 
 MODELS = Path(__file__).parent / 'models'

@@ -14,8 +14,8 @@ import re
 
 import pytest
 
-from colcon_robmosys.model import load_model_file, load_workspace
-from colcon_robmosys.model.qos import resolve_qos, ResolvedQoS
+from colcon_robmosys.check import load_model_file, load_workspace
+from colcon_robmosys.mapping.qos import resolve_qos, ResolvedQoS
 from colcon_robmosys.model.types import (
     Component, InterfaceKind, InterfaceRef, Language, Maintainer,
     ParameterRange, Pattern, Role, ServiceDefinition, Structure, System,
@@ -238,7 +238,7 @@ def test_activities(workspace):
     assert [(a.name, a.period, a.trigger, a.functions)
             for a in talker.activities] == [
         ('Periodic', 0.1, None, ('fTick', 'fPublish')),
-        ('OnCommand', None, 'rCommand', ('fCommand', 'fTick')),
+        ('OnCommand', None, 'rCommand', ('fCommand',)),
         ('OnInbox', None, 'sInbox', ('fInbox',)),
         ('OnGetCell', None, 'qGetCell', ('fAnswer',)),
         ('OnObstacle', None, 'eObstacle', ('fObstacle',)),

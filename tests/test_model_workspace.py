@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from colcon_robmosys.model import load_model_file
+from colcon_robmosys.check import load_model_file
 from colcon_robmosys.model.types import ModelFile, Workspace
 
 VALID = sorted((Path(__file__).resolve().parent / 'models' / 'valid').glob('*.yaml'))

@@ -22,11 +22,11 @@ from hypothesis import given, HealthCheck, settings, strategies as st
 import pytest
 import yaml
 
+from colcon_robmosys.check import find_model_files, load_workspace
+from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.errors import RobmosysError
-from colcon_robmosys.generate import create_missing_user_files, generate_package
-from colcon_robmosys.model import find_model_files, load_workspace
-from colcon_robmosys.model.index import InterfaceIndex
-from colcon_robmosys.ros2 import plan_package
+from colcon_robmosys.generators import create_missing_user_files, generate_package
+from colcon_robmosys.generators import plan_package
 from conftest import colcon, requires_ros
 from harness.fake_ament import fake_ament_index
 

@@ -194,10 +194,10 @@ import sys
 import os
 from pathlib import Path
 import re
-from colcon_robmosys.generate import generate_package
-from colcon_robmosys.model import find_model_files, load_workspace
-from colcon_robmosys.model.index import InterfaceIndex
-from colcon_robmosys.ros2 import plan_package
+from colcon_robmosys.generators import generate_package
+from colcon_robmosys.check import find_model_files, load_workspace
+from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.generators import plan_package
 
 src, out = Path(sys.argv[1]), Path(sys.argv[2])
 result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))

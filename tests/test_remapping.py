@@ -16,9 +16,9 @@ import textwrap
 
 import pytest
 
-from colcon_robmosys.model import load_workspace
-from colcon_robmosys.model.index import InterfaceIndex
-from colcon_robmosys.ros2 import plan_package
+from colcon_robmosys.check import load_workspace
+from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.generators import plan_package
 from conftest import requires_ros
 from harness.ros_env import background, loopback_env, run
 from harness.system import NodeLaunch, wait_until
@@ -114,9 +114,9 @@ def test_service_and_action_names_are_remapped_as_one(tmp_path, domain_id):
     result = load_workspace([tmp_path / 'robmosys.yaml'], InterfaceIndex([Path(sys.prefix)]))
     result.raise_errors()
     plan = plan_package(result.workspace, 'remap_system')
-    nodes = {n['instance']: NodeLaunch(
-        package=n['package'], executable=n['executable'], name=n['name'],
-        namespace=n['namespace'], remappings=tuple(n['remappings']), params_files=())
+    nodes = {n.instance: NodeLaunch(
+        package=n.package, executable=n.executable, name=n.name,
+        namespace=n.namespace, remappings=n.remappings, params_files=())
         for n in plan.summary['nodes']}
     assert nodes['server'].remappings == (('qAdd', '/robot/server/qAdd'),
                                           ('aCount', '/robot/count'))

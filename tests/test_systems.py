@@ -19,11 +19,11 @@ import sys
 import pytest
 import yaml
 
-from colcon_robmosys.generate import generate_package
-from colcon_robmosys.model import find_model_files, load_workspace
-from colcon_robmosys.model.index import InterfaceIndex
+from colcon_robmosys.check import find_model_files, load_workspace
+from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.generators import generate_package
+from colcon_robmosys.generators import plan_package
 from colcon_robmosys.model.types import Component, Pattern, Role, System, Workspace
-from colcon_robmosys.ros2 import plan_package
 from conftest import colcon, requires_ros, TEST_WORKSPACE
 from harness.system import read_activate_after, read_launch_file
 
@@ -251,9 +251,9 @@ def test_unconnected_required_port_is_a_warning_only(unwired):
     # an unconnected provided port (laser_spare.scan) is no warning; the
     # system is generated, the port left under its own name
     plan = plan_package(result.workspace, 'dummy_robot_bringup')
-    nodes = {n['instance']: n for n in plan.summary['nodes']}
-    assert nodes['laser_spare']['remappings'] == []
-    assert ('map', '/dummy_robot/map_server/map') not in nodes['monitor_ops']['remappings']
+    nodes = {n.instance: n for n in plan.summary['nodes']}
+    assert nodes['laser_spare'].remappings == ()
+    assert ('map', '/dummy_robot/map_server/map') not in nodes['monitor_ops'].remappings
 
 
 @requires_ros

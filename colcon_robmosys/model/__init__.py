@@ -1,9 +1,7 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-"""RobMoSys models: loading, validation and the typed model."""
+"""RobMoSys models in RobMoSys terms: types, loading with line marks, the schema.
 
-from colcon_robmosys.model.types import *  # noqa: F401,F403
-from colcon_robmosys.model.workspace import (  # noqa: F401
-    find_model_files, load_model_file, load_workspace, LoadResult,
-    model_dependencies, MODEL_FILE_NAME)
+No ROS 2 decision and no colcon here: the layers above read these types.
+"""

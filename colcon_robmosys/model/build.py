@@ -26,24 +26,6 @@ T = TypeVar('T')
 
 DEFAULT_VERSION = '0.1.0'
 
-#: Which port pattern and role may trigger an activity, and what it gets.
-TRIGGERING_PORTS = {
-    (Pattern.PUSH, Role.REQUIRED): 'each message received',
-    (Pattern.SEND, Role.PROVIDED): 'each message received',
-    (Pattern.QUERY, Role.PROVIDED): 'each request, returning the answer',
-    (Pattern.QUERY, Role.REQUIRED): 'each answer of an asynchronous call',
-    (Pattern.EVENT, Role.REQUIRED): 'each event that fires',
-    (Pattern.EVENT, Role.PROVIDED): 'the condition of each activation',
-    (Pattern.ACTION, Role.PROVIDED): 'each goal, returning the result',
-    (Pattern.ACTION, Role.REQUIRED): 'each result of a goal sent',
-}
-
-#: Ports that cannot work without an activity that handles their input.
-NEEDS_HANDLER = {(Pattern.QUERY, Role.PROVIDED), (Pattern.ACTION, Role.PROVIDED)}
-
-#: Ports whose activity is one function that returns something.
-ONE_FUNCTION = NEEDS_HANDLER | {(Pattern.EVENT, Role.PROVIDED)}
-
 PARAMETER_KINDS: dict[str, Callable[[Any], bool]] = {
     'bool': lambda v: isinstance(v, bool),
     'int': lambda v: isinstance(v, int) and not isinstance(v, bool),
@@ -311,7 +293,6 @@ class FileBuilder:
                                _choices(function_names))
 
         activities = []
-        triggered_by: dict[str, str] = {}
         for aname, body in raw.get('activities', {}).items():
             apath = path + ('activities', aname)
             self.check_identifier(apath, 'activity name', aname)
@@ -321,40 +302,16 @@ class FileBuilder:
                 self.error(apath, f"activity '{aname}' needs either 'period' "
                            f"(periodic) or 'trigger' (a port), {which}",
                            key=True)
-            if trigger is not None:
-                port = port_by_name.get(trigger)
-                if port is None:
-                    self.error(apath + ('trigger',),
-                               f"activity '{aname}' is triggered by unknown "
-                               f"port '{trigger}'{_choices(port_by_name)}")
-                elif (port.pattern, port.role) not in TRIGGERING_PORTS:
-                    self.error(apath + ('trigger',),
-                               f'a {port.role.value} {port.pattern.value} port '
-                               f"('{trigger}') delivers nothing that could "
-                               'trigger an activity')
-                elif trigger in triggered_by:
-                    self.error(apath + ('trigger',),
-                               f"port '{trigger}' already triggers activity "
-                               f"'{triggered_by[trigger]}'")
-                else:
-                    triggered_by[trigger] = aname
-                    if (port.pattern, port.role) in ONE_FUNCTION and \
-                            len(body['functions']) != 1:
-                        self.error(apath + ('functions',),
-                                   f"activity '{aname}' answers port "
-                                   f"'{trigger}', so it must have exactly one "
-                                   'function: the one that returns the answer')
+            if trigger is not None and trigger not in port_by_name:
+                self.error(apath + ('trigger',),
+                           f"activity '{aname}' is triggered by unknown "
+                           f"port '{trigger}'{_choices(port_by_name)}")
+                trigger = None
             check_functions(apath + ('functions',), body['functions'])
             activities.append(Activity(
                 aname, tuple(body['functions']), period, trigger,
-                body.get('description', ''), self.at(apath, key=True)))
-        for port in ports:
-            if (port.pattern, port.role) in NEEDS_HANDLER and \
-                    port.name not in triggered_by:
-                self.error(path + ('ports', port.name),
-                           f"provided {port.pattern.value} port '{port.name}' "
-                           'needs an activity triggered by it to answer',
-                           key=True)
+                body.get('description', ''), self.at(apath, key=True),
+                self.at(apath + ('trigger',)), self.at(apath + ('functions',))))
         lifecycle = []
         for transition in LIFECYCLE_TRANSITIONS:
             listed = raw.get('lifecycle', {}).get(transition)

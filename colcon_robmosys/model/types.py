@@ -261,6 +261,9 @@ class Activity:
     trigger: str | None
     description: str
     location: Location
+    #: where the trigger and the list of functions stand
+    trigger_location: Location | None = None
+    functions_location: Location | None = None
 
 
 @dataclass(frozen=True)

@@ -9,14 +9,14 @@ from colcon_core.package_descriptor import PackageDescriptor
 from colcon_core.package_discovery import PackageDiscoveryExtensionPoint
 from colcon_core.plugin_system import satisfies_version
 
-from colcon_robmosys.model import load_workspace
-from colcon_robmosys.model import model_dependencies
+from colcon_robmosys.check import load_workspace
+from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
+from colcon_robmosys.model.files import model_dependencies
 from colcon_robmosys.model.types import Component
 from colcon_robmosys.model.types import Language
 from colcon_robmosys.model.types import ServiceDefinition
 from colcon_robmosys.package_identification.robmosys import \
     RobmosysPackageIdentification
-from colcon_robmosys.ros2.cpp import CPP_CLIENT_PACKAGES
 from colcon_robmosys.runtime import installed_runtime
 from colcon_robmosys.runtime import RUNTIME_PACKAGE
 from colcon_robmosys.runtime import runtime_source

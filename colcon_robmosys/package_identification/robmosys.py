@@ -8,7 +8,7 @@ from colcon_core.package_identification import \
     PackageIdentificationExtensionPoint
 from colcon_core.plugin_system import satisfies_version
 
-from colcon_robmosys.model import MODEL_FILE_NAME
+from colcon_robmosys.model.files import MODEL_FILE_NAME
 from colcon_robmosys.runtime import names_runtime
 
 

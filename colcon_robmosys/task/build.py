@@ -12,9 +12,9 @@ from colcon_core.task import TaskExtensionPoint
 from colcon_ros.task.ament_cmake.build import AmentCmakeBuildTask
 
 from colcon_robmosys.errors import RobmosysError
-from colcon_robmosys.generate import generate_package
+from colcon_robmosys.generators import generate_package
+from colcon_robmosys.generators import plan_package
 from colcon_robmosys.package_discovery.robmosys import METADATA_KEY
-from colcon_robmosys.ros2 import plan_package
 
 logger = colcon_logger.getChild(__name__)
 

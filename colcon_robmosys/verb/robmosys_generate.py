@@ -12,10 +12,10 @@ from colcon_core.plugin_system import satisfies_version
 from colcon_core.verb import VerbExtensionPoint
 
 from colcon_robmosys.errors import RobmosysError
-from colcon_robmosys.generate import create_missing_user_files
-from colcon_robmosys.generate import generate_package
+from colcon_robmosys.generators import create_missing_user_files
+from colcon_robmosys.generators import generate_package
+from colcon_robmosys.generators import plan_package
 from colcon_robmosys.package_discovery.robmosys import METADATA_KEY
-from colcon_robmosys.ros2 import plan_package
 
 
 class RobmosysGenerateVerb(VerbExtensionPoint):

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from colcon_robmosys.model.index import InterfaceIndex
+from colcon_robmosys.check.index import InterfaceIndex
 
 #: The installed interfaces, as far as the test models use them.
 INSTALLED = {

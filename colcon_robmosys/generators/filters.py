@@ -11,6 +11,8 @@ import textwrap
 from typing import Any, Callable
 from xml.sax.saxutils import escape as _xml_escape
 
+from colcon_robmosys.mapping.literals import cpp_str, split_literal
+
 
 def xml(text: Any) -> str:
     """Escape text for XML element content and attribute values.
@@ -72,28 +74,6 @@ def py_literal(value: Any, indent: int, prefix: int = 0) -> str:
         return '(\n' + '\n'.join(lines) + '\n' + ' ' * indent + ')'
     lines = [pad + py_literal(item, inner) + ',' for item in value]
     return '[\n' + '\n'.join(lines) + '\n' + ' ' * indent + ']'
-
-
-def split_literal(text: str, width: int,
-                  quote: Callable[[str], str]) -> list[str]:
-    """Split text into quoted literals of at most ``width`` characters each.
-
-    Python and C++ join adjacent literals back into the text. A split falls
-    between characters, never inside an escape, and at a space where one
-    allows it, so that words stay whole; a character whose escape alone is
-    wider than ``width`` still gets a literal of its own.
-    """
-    parts, start = [], 0
-    while start < len(text):
-        end = start + 1
-        while end < len(text) and len(quote(text[start:end + 1])) <= width:
-            end += 1
-        space = text.rfind(' ', start + 1, end)
-        if end < len(text) and space != -1:
-            end = space + 1
-        parts.append(quote(text[start:end]))
-        start = end
-    return parts
 
 
 def py_docstring(text: Any, indent: int = 0) -> str:
@@ -158,28 +138,6 @@ def yaml_value(value: Any) -> str:
     if isinstance(value, str):
         return '"' + _YAML_ESCAPED.sub(_yaml_escape, value) + '"'
     return json.dumps(value)
-
-
-_CPP_ESCAPES = {'\\': '\\\\', '"': '\\"', '\n': '\\n', '\t': '\\t',
-                '\r': '\\r', '?': '\\?'}
-
-
-def cpp_str(text: Any) -> str:
-    r"""Write a C++ string literal, in plain ASCII.
-
-    Other bytes of the UTF-8 text become three-digit octal escapes, which
-    (unlike ``\x``) cannot swallow the character that follows; ``?`` is
-    escaped so that no trigraph forms.
-    """
-    out = []
-    for char in str(text):
-        if char in _CPP_ESCAPES:
-            out.append(_CPP_ESCAPES[char])
-        elif ' ' <= char <= '~':
-            out.append(char)
-        else:
-            out.extend(f'\\{byte:03o}' for byte in char.encode('utf-8'))
-    return '"' + ''.join(out) + '"'
 
 
 def cpp_comment(text: Any, prefix: str = '//') -> str:

@@ -5,13 +5,14 @@
 
 from __future__ import annotations
 
+from dataclasses import fields, is_dataclass
 from functools import lru_cache
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import jinja2
 
-from colcon_robmosys.generate.filters import FILTERS
+from colcon_robmosys.generators.filters import FILTERS
 
 
 def templates_dir() -> Path:
@@ -42,6 +43,20 @@ def environment() -> jinja2.Environment:
     return env
 
 
-def render(template: str, context: Mapping[str, Any]) -> str:
-    """Render one template with its variables."""
-    return environment().get_template(template).render(**context)
+def variables(context: Any) -> dict[str, Any]:
+    """Return the variables of a template: the fields and properties of a context.
+
+    Contexts are frozen dataclasses of the mapping; a template reads their
+    attributes as top-level names.
+    """
+    if not is_dataclass(context) or isinstance(context, type):
+        raise TypeError(f'a template context is a dataclass, not {context!r}')
+    names = [f.name for f in fields(context)]
+    names += [name for name, value in vars(type(context)).items()
+              if isinstance(value, property)]
+    return {name: getattr(context, name) for name in names}
+
+
+def render(template: str, context: Any) -> str:
+    """Render one template with a typed context."""
+    return environment().get_template(template).render(**variables(context))

@@ -1,0 +1,91 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""Rules on activities and signatures: what runs a function, and with what.
+
+A function has one signature in C++ and one way of being called in Python,
+so every activity that runs it must hand it the same thing.
+"""
+
+from __future__ import annotations
+
+from colcon_robmosys.errors import Diagnostic
+from colcon_robmosys.mapping.portkinds import port_kind
+from colcon_robmosys.model.types import Component
+
+
+def activity_problems(component: Component) -> list[Diagnostic]:
+    """Return what is wrong with the triggers and functions of activities."""
+    problems: list[Diagnostic] = []
+    triggered_by: dict[str, str] = {}
+    for activity in component.activities:
+        port = component.port(activity.trigger) if activity.trigger else None
+        if port is None:
+            continue
+        where = activity.trigger_location or activity.location
+        kind = port_kind(port)
+        if not kind.triggers:
+            problems.append(Diagnostic(
+                where, f'a {port.role.value} {port.pattern.value} port '
+                f"('{port.name}') delivers nothing that could trigger an "
+                'activity'))
+        elif port.name in triggered_by:
+            problems.append(Diagnostic(
+                where, f"port '{port.name}' already triggers activity "
+                f"'{triggered_by[port.name]}'"))
+        else:
+            triggered_by[port.name] = activity.name
+            if kind.one_function and len(activity.functions) != 1:
+                problems.append(Diagnostic(
+                    activity.functions_location or activity.location,
+                    f"activity '{activity.name}' answers port "
+                    f"'{port.name}', so it must have exactly one function: "
+                    'the one that returns the answer'))
+    for port in component.ports:
+        if port_kind(port).needs_handler and port.name not in triggered_by:
+            problems.append(Diagnostic(
+                port.location, f'provided {port.pattern.value} port '
+                f"'{port.name}' needs an activity triggered by it to answer"))
+    if not problems:
+        problems += signature_problems(component)
+    return problems
+
+
+def signature_problems(component: Component) -> list[Diagnostic]:
+    """Return the functions that two triggers would call differently.
+
+    A function listed in several activities is called by each; the ports
+    that trigger them must deliver the same thing (in both languages: a C++
+    function has one signature, and a Python function called with other
+    arguments fails at run time). Periodic activities and lifecycle
+    transitions call a function with nothing.
+    """
+    #: function -> (what it receives, said in words) per caller
+    callers: dict[str, list[tuple[object, str]]] = {}
+    for activity in component.activities:
+        port = component.port(activity.trigger) if activity.trigger else None
+        if port is not None:
+            kind = port_kind(port)
+            what: object = (kind.delivers, port.type)
+            said = f"the port '{port.name}' ({kind.delivers_text}, {port.type})"
+        else:
+            what, said = None, f"the periodic activity '{activity.name}'"
+        for name in activity.functions:
+            callers.setdefault(name, []).append((what, said))
+    for transition, names in component.lifecycle:
+        for name in names:
+            callers.setdefault(name, []).append(
+                (None, f"the lifecycle transition '{transition}'"))
+    problems = []
+    for function in component.functions:
+        calls = callers.get(function.name, [])
+        first = calls[0] if calls else None
+        other = next((c for c in calls if c[0] != first[0]), None) \
+            if first else None
+        if first is not None and other is not None:
+            problems.append(Diagnostic(
+                function.location,
+                f"function '{function.name}' is run by {first[1]} and by "
+                f'{other[1]}, which deliver different things; a function '
+                'has one signature: give each its own function'))
+    return problems

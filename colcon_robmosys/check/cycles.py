@@ -1,0 +1,71 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""Rules on cycles: of package dependencies, messages and activation order."""
+
+from __future__ import annotations
+
+from colcon_robmosys.check.context import CheckContext
+from colcon_robmosys.model.files import model_dependencies
+from colcon_robmosys.model.types import ServiceDefinition, System
+
+
+class CycleRules(CheckContext):
+    """Loops a build, a message or an activation order cannot have."""
+
+    def _check_cycles(self) -> None:
+        graph = {name: {d for d in model_dependencies(model)
+                        if d in self.models}
+                 for name, model in self.models.items()}
+        for cycle in _cycles(graph):
+            model = self.models[cycle[0]]
+            self.error(model.info.location, 'dependency cycle: ' +
+                       ' -> '.join(cycle + [cycle[0]]))
+        for model in self.models.values():
+            if isinstance(model, ServiceDefinition):
+                self._check_message_cycles(model)
+            if isinstance(model, System):
+                order = {i.name: set(i.after) for i in model.instances}
+                for cycle in _cycles(order):
+                    instance = model.instance(cycle[0])
+                    assert instance is not None
+                    self.error(instance.location, 'activation order cycle: ' +
+                               ' -> '.join(cycle + [cycle[0]]))
+
+    def _check_message_cycles(self, definition: ServiceDefinition) -> None:
+        # across packages, a cycle of messages is a dependency cycle too
+        objects = {o.name: o for o in definition.communication_objects}
+        graph = {name: {f.type.message.name for f in obj.structure.fields
+                        if f.type.message is not None and
+                        f.type.message.package == definition.package}
+                 for name, obj in objects.items()}
+        for cycle in _cycles(graph):
+            self.error(objects[cycle[0]].location, (
+                'message type cycle: ' + ' -> '.join(cycle + [cycle[0]]) +
+                ' (a message cannot contain itself, not even through '
+                'arrays or other messages)'))
+
+
+def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """Return one cycle per strongly connected part that loops."""
+    cycles: list[list[str]] = []
+    state: dict[str, int] = {}
+    for start in sorted(graph):
+        if state.get(start):
+            continue
+        stack = [(start, iter(sorted(graph.get(start, ()))))]
+        path, state[start] = [start], 1
+        while stack:
+            node, children = stack[-1]
+            child = next(children, None)
+            if child is None:
+                stack.pop()
+                path.pop()
+                state[node] = 2
+            elif state.get(child) == 1:
+                cycles.append(path[path.index(child):])
+            elif not state.get(child) and child in graph:
+                state[child] = 1
+                path.append(child)
+                stack.append((child, iter(sorted(graph[child]))))
+    return cycles

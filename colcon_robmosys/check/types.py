@@ -1,0 +1,94 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""Rules on types: every interface a model names exists, and is of its kind."""
+
+from __future__ import annotations
+
+from colcon_robmosys.check.context import CheckContext
+from colcon_robmosys.model.types import (
+    Component, InterfaceKind, InterfaceRef, Pattern, Port, ServiceDefinition)
+
+
+class TypeRules(CheckContext):
+    """Interfaces named by fields and ports, and packages depended on."""
+
+    def _interface_problem(self, ref: InterfaceRef) -> str | None:
+        if ref.package in self.broken_packages:
+            return None
+        definition = self.definitions.get(ref.package)
+        if definition is not None:
+            names = {
+                InterfaceKind.MSG: [c.name for c in
+                                    definition.communication_objects],
+                InterfaceKind.SRV: [q.name for q in definition.queries],
+                # an event is an action of ROS 2 too
+                InterfaceKind.ACTION: [a.name for a in definition.actions] +
+                [e.name for e in definition.events],
+            }[ref.kind]
+            if ref.name in names:
+                return None
+            known = ', '.join(names) or 'none'
+            return (f"unknown type '{ref}': service definition "
+                    f"'{ref.package}' defines no {ref.kind.value} "
+                    f"'{ref.name}' (its {ref.kind.value} types: {known})")
+        if ref.package in self.models:
+            return (f"unknown type '{ref}': package '{ref.package}' is not "
+                    'a service definition')
+        if self.index.has_interface(ref):
+            return None
+        if self.index.has_package(ref.package):
+            return (f"unknown type '{ref}': the installed package "
+                    f"'{ref.package}' has no such interface")
+        return (f"unknown type '{ref}': package '{ref.package}' is neither "
+                'a service definition of this workspace nor installed in '
+                'AMENT_PREFIX_PATH')
+
+    def _event_problem(self, port: Port) -> str | None:
+        """Tell when an event port names a plain action, or the reverse."""
+        definition = self.definitions.get(port.type.package)
+        if definition is None or port.pattern not in (Pattern.EVENT,
+                                                      Pattern.ACTION):
+            return None
+        events = {e.name for e in definition.events}
+        if port.pattern is Pattern.EVENT and port.type.name not in events:
+            return (f"'{port.type}' is an action, not an event: an event "
+                    f"port names an entry of 'events' of '{definition.package}'")
+        if port.pattern is Pattern.ACTION and port.type.name in events:
+            return (f"'{port.type}' is an event: name it from an event port "
+                    '(pattern: event)')
+        return None
+
+    def _check_definition(self, definition: ServiceDefinition) -> None:
+        structures = [o.structure for o in definition.communication_objects]
+        structures += [s for q in definition.queries
+                       for s in (q.request, q.answer)]
+        structures += [s for a in definition.actions
+                       for s in (a.goal, a.result, a.feedback)]
+        structures += [s for e in definition.events
+                       for s in (e.activation, e.event)]
+        for structure in structures:
+            for field_ in structure.fields:
+                ref = field_.type.message
+                if ref is None:
+                    continue
+                problem = self._interface_problem(ref)
+                if problem:
+                    self.error(field_.location,
+                               f"field '{field_.name}': {problem}")
+
+    def _check_component(self, component: Component) -> None:
+        for port in component.ports:
+            problem = self._interface_problem(port.type) or \
+                self._event_problem(port)
+            if problem:
+                self.error(port.location, f"port '{port.name}': {problem}")
+        for package in component.info.depends:
+            if package not in self.models and \
+                    package not in self.broken_packages and \
+                    not self.index.has_package(package):
+                self.error(component.info.location,
+                           f"component '{component.name}' depends on "
+                           f"unknown package '{package}'")
+
+    # systems ------------------------------------------------------------

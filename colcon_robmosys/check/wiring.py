@@ -1,0 +1,207 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""Rules on systems: instances, connections, remapped names, overrides."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from colcon_robmosys.check.context import CheckContext
+from colcon_robmosys.check.qos import qos_incompatibility
+from colcon_robmosys.errors import Location
+from colcon_robmosys.mapping.names import connection_name, node_name
+from colcon_robmosys.model.build import parameter_value_problem
+from colcon_robmosys.model.types import (
+    Component, Connection, Instance, Pattern, Port, PortRef, Role, System)
+
+
+class WiringRules(CheckContext):
+    """What a system may instantiate and connect."""
+
+    def _check_system(self, system: System) -> None:
+        components: dict[str, Component] = {}
+        node_names: dict[str, str] = {}
+        for instance in system.instances:
+            if instance.component == system.package:
+                self.error(instance.location,
+                           f"instance '{instance.name}': package "
+                           f"'{instance.component}' is this system itself, "
+                           'not a component')
+                continue
+            component = self.components.get(instance.component)
+            if component is None and \
+                    instance.component in self.broken_packages:
+                continue
+            if component is None:
+                what = ('is not a component'
+                        if instance.component in self.models
+                        else 'is not a component of this workspace')
+                self.error(instance.location,
+                           f"instance '{instance.name}': package "
+                           f"'{instance.component}' {what}")
+                continue
+            components[instance.name] = component
+            fqn = node_name(instance.namespace, instance.name)
+            if fqn in node_names:
+                self.error(instance.location,
+                           f"instance '{instance.name}' has the node name "
+                           f"'{fqn}' of instance '{node_names[fqn]}'")
+            node_names[fqn] = instance.name
+            self._check_overrides(instance, component)
+            for after in instance.after:
+                other = system.instance(after)
+                if other is None:
+                    self.error(instance.location,
+                               f"instance '{instance.name}' is activated "
+                               f"after unknown instance '{after}'")
+                elif not other.activate or not instance.activate:
+                    unmanaged = instance if not instance.activate else other
+                    self.error(instance.location,
+                               f"instance '{instance.name}' is activated "
+                               f"after '{after}', but '{unmanaged.name}' is "
+                               'not activated by the system (activate: false)')
+        connected: set[tuple[str, str]] = set()
+        names = _Names()
+        for connection in system.connections:
+            ends: list[tuple[PortRef, Port]] = []
+            for ref in (connection.source, connection.target):
+                component = components.get(ref.instance)
+                if system.instance(ref.instance) is None:
+                    self.error(ref.location,
+                               f"connection end '{ref}': unknown instance "
+                               f"'{ref.instance}'")
+                elif component is not None:
+                    port = component.port(ref.port)
+                    if port is None:
+                        self.error(ref.location,
+                                   f"connection end '{ref}': component "
+                                   f"'{component.name}' has no port "
+                                   f"'{ref.port}'")
+                    else:
+                        ends.append((ref, port))
+                        connected.add((ref.instance, ref.port))
+            if len(ends) == 2 and self._check_connection(
+                    connection.location, ends[0][1], ends[1][1]):
+                self._check_names(system, connection, ends, names)
+        for instance in system.instances:
+            component = components.get(instance.name)
+            for port in component.ports if component else ():
+                if port.role is Role.REQUIRED and \
+                        (instance.name, port.name) not in connected:
+                    self.warning(system.package, instance.location,
+                                 f"required port '{instance.name}."
+                                 f"{port.name}' is not connected")
+
+    def _check_connection(self, location: Location, a: Port,
+                          b: Port) -> bool:
+        """Check that two ports fit; return whether they do."""
+        if a.pattern is not b.pattern:
+            self.error(location, f'cannot connect {_a(a.pattern.value)} '
+                       f"port ('{a.name}') to {_a(b.pattern.value)} port "
+                       f"('{b.name}')")
+            return False
+        if a.role is b.role:
+            self.error(location, f'cannot connect two {a.role.value} ports '
+                       f"('{a.name}', '{b.name}'): a connection joins a "
+                       'provided port to a required one')
+            return False
+        if a.type != b.type:
+            self.error(location, f"type mismatch: '{a.name}' exchanges "
+                       f"{a.type}, '{b.name}' exchanges {b.type}")
+            return False
+        writer, reader = _writer_reader(a, b)
+        if writer is not None and reader is not None:
+            problem = qos_incompatibility(writer.qos, reader.qos)
+            if problem:
+                self.error(location, 'incompatible QoS between '
+                           f"'{writer.name}' (writer) and '{reader.name}' "
+                           f'(reader): {problem}')
+                return False
+        return True
+
+    def _check_names(self, system: System, connection: Connection,
+                     ends: list[tuple[PortRef, Port]], names: _Names) -> None:
+        """Check the ROS 2 name a connection remaps its two ends to.
+
+        ROS 2 remaps a name once per node: a port in two connections must
+        take one name in both. One name carries one pattern and type, and a
+        service or action name has one server.
+        """
+        ref, port = next(e for e in ends if e[1].role is Role.PROVIDED)
+        instance = system.instance(ref.instance)
+        assert instance is not None
+        name = connection_name(instance.namespace, ref.instance, ref.port,
+                               connection.topic)
+        here = connection.location
+        for end, _ in ends:
+            key = (end.instance, end.port)
+            if key in names.of_port and names.of_port[key][0] != name:
+                other, where = names.of_port[key]
+                self.error(here, f"port '{end}' is connected to '{name}' "
+                           f"here but to '{other}' by the connection at "
+                           f'line {where.line}: ROS 2 remaps a port to one '
+                           'name (give both connections the same topic)')
+            names.of_port.setdefault(key, (name, here))
+        kind = f'{port.pattern.value} ports of {port.type}'
+        other_kind, where = names.kind.setdefault(name, (kind, here))
+        if other_kind != kind:
+            self.error(here, f"'{name}' connects {kind} here but "
+                       f'{other_kind} at line {where.line}')
+        if port.pattern in (Pattern.QUERY, Pattern.ACTION, Pattern.EVENT):
+            server, where = names.server.setdefault(name, (str(ref), here))
+            if server != str(ref):
+                self.error(here, f"'{name}' is served by '{ref}' here and "
+                           f"by '{server}' at line {where.line}: a "
+                           f'{port.pattern.value} name has one server')
+
+    def _check_overrides(self, instance: Instance, component: Component) -> None:
+        parameters = {p.name: p for p in component.parameters}
+        locations = instance.parameter_locations or \
+            (instance.location,) * len(instance.parameters)
+        for (name, value), location in zip(instance.parameters, locations):
+            parameter = parameters.get(name)
+            if parameter is None:
+                known = ', '.join(sorted(parameters)) or 'none'
+                self.error(location,
+                           f"instance '{instance.name}': component "
+                           f"'{component.name}' has no parameter '{name}' "
+                           f'(its parameters: {known})')
+                continue
+            problem = parameter_value_problem(parameter.type, value)
+            if problem is None and parameter.range is not None and \
+                    not parameter.range.start <= value <= parameter.range.end:
+                problem = (f'{value} is out of the range '
+                           f'[{parameter.range.start}, {parameter.range.end}]')
+            if problem:
+                self.error(location,
+                           f"instance '{instance.name}', parameter '{name}': "
+                           f'{problem}')
+
+
+def _a(word: str) -> str:
+    """Return a word with its indefinite article."""
+    return f"{'an' if word[0] in 'aeiou' else 'a'} {word}"
+
+
+@dataclass
+class _Names:
+    """The ROS 2 names the connections of a system have used so far."""
+
+    #: (instance, port) -> its name and the connection that gave it
+    of_port: dict[tuple[str, str], tuple[str, Location]] = field(
+        default_factory=dict)
+    #: name -> the pattern and type of its ports, and where first seen
+    kind: dict[str, tuple[str, Location]] = field(default_factory=dict)
+    #: service, action or event name -> its server, and where first seen
+    server: dict[str, tuple[str, Location]] = field(default_factory=dict)
+
+
+def _writer_reader(a: Port, b: Port) -> tuple[Port | None, Port | None]:
+    """Return which port writes and which reads a topic connection."""
+    if a.pattern in (Pattern.QUERY, Pattern.ACTION):
+        return None, None
+    provided, required = (a, b) if a.role is Role.PROVIDED else (b, a)
+    if a.pattern is Pattern.SEND:
+        return required, provided
+    return provided, required

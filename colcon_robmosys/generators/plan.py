@@ -1,0 +1,151 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""What a generator makes of a mapping plan: files, each from a template.
+
+A generator is a table of rows (template -> output path); the variables of
+every template are a typed, frozen context of the mapping.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any, Mapping
+
+
+@dataclass(frozen=True)
+class FileSpec:
+    """A generated file: a template and its context."""
+
+    #: path inside the generated package, with forward slashes
+    path: str
+    template: str
+    #: a frozen dataclass of the mapping, whose fields the template reads
+    context: Any
+    executable: bool = False
+
+
+@dataclass(frozen=True)
+class UserFile:
+    """A file the user owns: created once from a template, never rewritten.
+
+    Its content is copied into the generated package at ``package_path``.
+    """
+
+    #: path relative to the directory of the model file
+    source_path: str
+    #: where the build uses it, inside the generated package
+    package_path: str
+    template: str
+    context: Any
+    #: the names the user's code has to define
+    required_functions: tuple[str, ...] = ()
+    #: the class that has to define them
+    required_class: str = ''
+    #: the regenerated blueprint, inside the generated package
+    skeleton_path: str = ''
+
+
+@dataclass(frozen=True)
+class PackagePlan:
+    """Everything needed to generate one ROS 2 package."""
+
+    name: str
+    #: 'interfaces', 'component' or 'system'
+    kind: str
+    #: the directory of the model file the package comes from
+    model_dir: Path
+    build_depends: tuple[str, ...]
+    exec_depends: tuple[str, ...]
+    files: tuple[FileSpec, ...]
+    user_files: tuple[UserFile, ...] = ()
+    #: packages the build needs from the ROS 2 prefix, not from the
+    #: workspace (rclcpp for C++): without them the build is skipped
+    prefix_requirements: tuple[str, ...] = ()
+    #: facts for logs and tests, e.g. the executables or the nodes
+    summary: Mapping[str, Any] = field(default_factory=dict)
+
+    @property
+    def depends(self) -> tuple[str, ...]:
+        """Return every package this one depends on, build or run."""
+        return tuple(dict.fromkeys(self.build_depends + self.exec_depends))
+
+
+@dataclass(frozen=True)
+class Row:
+    """A row of a generator's table: one template, one output path.
+
+    ``path`` is formatted with the context's attributes (``{package}``,
+    ``{cls}``).
+    """
+
+    path: str
+    template: str
+    #: the attribute of the context that holds the template's context,
+    #: if not the whole context (e.g. ``package_xml``)
+    part: str = ''
+    #: an attribute of the context that must be true for the file to exist
+    when: str = ''
+    executable: bool = False
+    #: render the skeleton flavour of a user file's template
+    skeleton: bool = False
+
+
+@dataclass(frozen=True)
+class UserRow:
+    """A row of a generator's table for a file the user owns."""
+
+    source_path: str
+    package_path: str
+    template: str
+    skeleton_path: str
+    when: str = ''
+    #: the attribute of the context listing the functions the user writes
+    required_functions: str = ''
+    required_class: str = ''
+
+
+class _Attributes(dict[str, Any]):
+    """Format paths with the attributes of a context."""
+
+    def __init__(self, context: Any) -> None:
+        super().__init__()
+        self.context = context
+
+    def __missing__(self, key: str) -> Any:
+        return getattr(self.context, key)
+
+
+def _path(pattern: str, context: Any) -> str:
+    return pattern.format_map(_Attributes(context))
+
+
+def files_of(rows: tuple[Row, ...], context: Any) -> tuple[FileSpec, ...]:
+    """Return the files a table makes of a context."""
+    files = []
+    for row in rows:
+        if row.when and not getattr(context, row.when):
+            continue
+        part = getattr(context, row.part) if row.part else context
+        if row.skeleton:
+            part = replace(part, skeleton=True)
+        files.append(FileSpec(_path(row.path, context), row.template, part,
+                              row.executable))
+    return tuple(files)
+
+
+def user_files_of(rows: tuple[UserRow, ...],
+                  context: Any) -> tuple[UserFile, ...]:
+    """Return the user's files a table makes of a context."""
+    return tuple(
+        UserFile(
+            source_path=_path(row.source_path, context),
+            package_path=_path(row.package_path, context),
+            template=row.template, context=context,
+            required_functions=tuple(
+                f.name for f in getattr(context, row.required_functions))
+            if row.required_functions else (),
+            required_class=_path(row.required_class, context),
+            skeleton_path=_path(row.skeleton_path, context))
+        for row in rows if not row.when or getattr(context, row.when))

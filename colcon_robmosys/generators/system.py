@@ -1,0 +1,38 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""The system generator: launch files, parameters and a diagram."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from colcon_robmosys.generators.plan import (
+    files_of, FileSpec, PackagePlan, Row)
+from colcon_robmosys.mapping.system import PARAMS_FILE, SystemPackage
+
+#: template -> output path, once per launch file (all instances, then each)
+LAUNCH_FILES = (
+    Row('launch/launch{suffix}.py', 'system/launch.py.jinja'),
+    Row('launch/activate{suffix}.py', 'system/activate.py.jinja'),
+)
+
+#: template -> output path
+FILES = (
+    Row(PARAMS_FILE, 'system/params.yaml.jinja'),
+    Row('{diagram}', 'system/diagram.dot.jinja'),
+    Row('CMakeLists.txt', 'system/CMakeLists.txt.jinja'),
+    Row('package.xml', 'common/package.xml.jinja', part='package_xml'),
+)
+
+
+def system_package(context: SystemPackage, model_dir: Path) -> PackagePlan:
+    """Return the files of a system package."""
+    files: tuple[FileSpec, ...] = ()
+    for launch in context.launch_files:
+        files += files_of(LAUNCH_FILES, launch)
+    return PackagePlan(
+        name=context.package, kind='system', model_dir=model_dir,
+        build_depends=context.depends, exec_depends=context.exec_depends,
+        files=files + files_of(FILES, context),
+        summary={'nodes': context.nodes})

@@ -1,0 +1,435 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""How C++ spells a component plan: types, signatures, QoS and includes.
+
+The layout is the reference's (Papyrus for Robotics): ``src-gen/<pkg>/`` holds
+the generated class and main, ``src-skel/<pkg>/`` the regenerated skeleton of
+the implementation, ``src/<pkg>/<Component>_impl.{hpp,cpp}`` (next to
+the model) the user's implementation, which derives from the generated class.
+Headers are ``.hpp`` where the reference has ``.h``: ament_uncrustify reads
+``.h`` files as C.
+
+Nothing here decides what a port becomes (that is the port-kind table of
+:mod:`colcon_robmosys.mapping.portkinds`, read through
+:mod:`colcon_robmosys.mapping.component`): the tables below only spell it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import re
+import textwrap
+from typing import Any, Mapping
+
+from colcon_robmosys.mapping.common import (
+    Banner, banner_of, package_xml, PackageXml, unique)
+from colcon_robmosys.mapping.component import (
+    ActivityPlan, ComponentPlan, FunctionPlan, PortPlan)
+from colcon_robmosys.mapping.literals import cpp_str, split_literal
+from colcon_robmosys.mapping.portkinds import Delivery, Entity, Returns
+from colcon_robmosys.mapping.qos import resolve_qos
+from colcon_robmosys.model.types import Component, InterfaceRef, Parameter, QoS
+
+#: The ROS 2 packages a C++ component needs in the prefix to build at all.
+CPP_CLIENT_PACKAGES = ('rclcpp', 'rclcpp_lifecycle', 'rclcpp_components')
+
+#: entity -> the type of the member that holds it
+MEMBER_TYPES = {
+    Entity.PUBLISHER: 'rclcpp_lifecycle::LifecyclePublisher<{type}>::SharedPtr',
+    Entity.SUBSCRIPTION: 'rclcpp::Subscription<{type}>::SharedPtr',
+    Entity.SERVICE: 'rclcpp::Service<{type}>::SharedPtr',
+    Entity.CLIENT: 'std::shared_ptr<ports::QueryClient<{type}>>',
+    Entity.ACTION_SERVER: 'rclcpp_action::Server<{type}>::SharedPtr',
+    Entity.ACTION_CLIENT: 'std::shared_ptr<ports::ActionClient<{type}>>',
+    Entity.EVENT_SERVER: 'std::shared_ptr<ports::EventServer<{type}>>',
+    Entity.EVENT_CLIENT: 'std::shared_ptr<ports::EventClient<{type}>>',
+}
+
+#: what a port delivers -> the parameters of a function it runs
+PARAMETERS = {
+    Delivery.MESSAGE: 'const {type} & commobj',
+    Delivery.REQUEST: 'const {type}::Request & request, {type}::Response & response',
+    Delivery.ANSWER: 'const {type}::Response & commobj',
+    Delivery.GOAL: 'const std::shared_ptr<GoalHandle_{port}> goal_handle',
+    Delivery.RESULT: 'const {type}::Result & commobj',
+    Delivery.ACTIVATION: 'const {type}::Goal & activation, const {type}::Feedback & event',
+    Delivery.EVENT: 'const {type}::Feedback & commobj',
+}
+
+#: what a function gives back -> its C++ return type (an answer is filled in)
+RETURN_TYPES = {
+    Returns.NOTHING: 'void', Returns.ANSWER: 'void',
+    Returns.RESULT: '{type}::Result', Returns.CONDITION: 'bool',
+}
+
+#: what a port delivers -> how its callback passes it on, if not by name
+CALL_ARGUMENTS = {Delivery.REQUEST: '*request, *response'}
+
+#: entity -> standard headers its code needs beyond the usual ones
+SYSTEM_INCLUDES = {Entity.ACTION_SERVER: ('future', 'vector')}
+
+#: model type -> (C++ type, ParameterValue accessor)
+PARAMETER_TYPES = {
+    'bool': ('bool', 'as_bool'),
+    'int': ('int64_t', 'as_int'),
+    'double': ('double', 'as_double'),
+    'string': ('std::string', 'as_string'),
+    'bool[]': ('std::vector<bool>', 'as_bool_array'),
+    'int[]': ('std::vector<int64_t>', 'as_integer_array'),
+    'double[]': ('std::vector<double>', 'as_double_array'),
+    'string[]': ('std::vector<std::string>', 'as_string_array'),
+    'byte[]': ('std::vector<uint8_t>', 'as_byte_array'),
+}
+
+
+@dataclass(frozen=True)
+class CppPort:
+    """A port as the C++ node declares and creates it."""
+
+    name: str
+    entity: str
+    type: str
+    member_type: str
+    description: str
+    #: statements that set each QoS policy (topics and events)
+    qos: tuple[str, ...]
+    activity: str | None
+    functions: tuple[str, ...]
+    own_group: bool
+    call_args: str
+
+
+@dataclass(frozen=True)
+class CppFunction:
+    """A function of the model as a virtual member function."""
+
+    name: str
+    returns: str
+    params: tuple[str, ...]
+    #: what the skeleton does not use yet
+    param_names: tuple[str, ...]
+    #: one parameter a line, when one line would be too long for cpplint
+    wrap: bool
+    code: str | None
+    description: str
+
+
+@dataclass(frozen=True)
+class CppRange:
+    """The range of a numeric parameter's descriptor."""
+
+    field: str
+    cls: str
+    start: str
+    end: str
+    step: str
+
+
+@dataclass(frozen=True)
+class CppParameter:
+    """A parameter: its declaration with a descriptor, and its accessor."""
+
+    name: str
+    cpp_type: str
+    accessor: str
+    default_lines: tuple[str, ...]
+    description_lines: tuple[str, ...]
+    doc: str
+    read_only: str
+    range: CppRange | None
+
+
+@dataclass(frozen=True)
+class CppActivity:
+    """An activity: its callback group, lock and, if periodic, its timer."""
+
+    name: str
+    period: float | None
+    period_ns: int | None
+    functions: tuple[str, ...]
+    description: str
+
+
+@dataclass(frozen=True)
+class CppIncludes:
+    """The includes of the generated header."""
+
+    system: tuple[str, ...]
+    ros: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class CppComponent:
+    """Everything the templates of a C++ component print."""
+
+    banner: Banner
+    package: str
+    cls: str
+    node_cls: str
+    node_header: str
+    description: str
+    includes: CppIncludes
+    ports: tuple[CppPort, ...]
+    #: the ports by entity, so that templates need not compare names
+    publishers: tuple[CppPort, ...]
+    action_servers: tuple[CppPort, ...]
+    activities: tuple[CppActivity, ...]
+    periodic: tuple[CppActivity, ...]
+    functions: tuple[CppFunction, ...]
+    user_functions: tuple[CppFunction, ...]
+    parameters: tuple[CppParameter, ...]
+    #: transition -> functions run on it
+    lifecycle: Mapping[str, tuple[str, ...]]
+    threads: int
+    has_impl: bool
+    #: the runtime classes of ports.hpp it needs
+    uses_ports_header: bool
+    query: bool
+    action: bool
+    event: bool
+    find_packages: tuple[str, ...]
+    link_targets: tuple[str, ...]
+    interface_packages: tuple[str, ...]
+    sources: tuple[str, ...]
+    prefix_requirements: tuple[str, ...]
+    package_xml: PackageXml
+    #: the skeleton or the user's file (impl templates)
+    skeleton: bool = False
+
+    @property
+    def impl_paths(self) -> tuple[str, str]:
+        """Return where the user's header and source live, next to the model."""
+        stem = f'src/{self.package}/{self.cls}_impl'
+        return f'{stem}.hpp', f'{stem}.cpp'
+
+
+def header_name(ref: InterfaceRef) -> str:
+    """Return the include of an interface, as rosidl_generator_cpp names it.
+
+    ``simple_msgs/msg/MapCell`` is ``simple_msgs/msg/map_cell.hpp``.
+    """
+    # rosidl's convert_camel_case_to_lower_case_underscore
+    name = re.sub(r'(.)([A-Z][a-z]+)', r'\1_\2', ref.name)
+    name = re.sub(r'([a-z0-9])([A-Z])', r'\1_\2', name).lower()
+    return f'{ref.package}/{ref.kind.value}/{name}.hpp'
+
+
+def cpp_type(ref: InterfaceRef) -> str:
+    """Return the C++ type of an interface, e.g. ``simple_msgs::msg::Map``."""
+    return f'{ref.package}::{ref.kind.value}::{ref.name}'
+
+
+def _seconds(value: float) -> str:
+    return f'rclcpp::Duration::from_seconds({float(value)!r})'
+
+
+def qos_statements(qos: QoS) -> list[str]:
+    """Return the statements that set every policy of ``qos`` (a QoS)."""
+    resolved = resolve_qos(qos)
+    lines = []
+    if resolved.history == 'keep_all':
+        lines.append('qos.keep_all();')
+    else:
+        lines.append(f'qos.keep_last({resolved.depth});')
+    if resolved.adaptive and qos.reliability is None:
+        lines.append('qos.reliability(RMW_QOS_POLICY_RELIABILITY_BEST_AVAILABLE);')
+    else:
+        lines.append('qos.reliable();' if resolved.reliability == 'reliable'
+                     else 'qos.best_effort();')
+    if resolved.adaptive and qos.durability is None:
+        lines.append('qos.durability(RMW_QOS_POLICY_DURABILITY_BEST_AVAILABLE);')
+    else:
+        lines.append('qos.durability_volatile();'
+                     if resolved.durability == 'volatile'
+                     else 'qos.transient_local();')
+    if resolved.deadline is not None:
+        lines.append(f'qos.deadline({_seconds(resolved.deadline)});')
+    if resolved.lifespan is not None:
+        lines.append(f'qos.lifespan({_seconds(resolved.lifespan)});')
+    lines.append('qos.liveliness(RMW_QOS_POLICY_LIVELINESS_'
+                 f'{resolved.liveliness.upper()});')
+    if resolved.liveliness_lease_duration is not None:
+        lines.append('qos.liveliness_lease_duration('
+                     f'{_seconds(resolved.liveliness_lease_duration)});')
+    return lines
+
+
+def _cpp_value(value: Any, type_: str) -> str:
+    """Write a parameter value as a C++ expression of its type."""
+    if type_ == 'bool':
+        return 'true' if value else 'false'
+    if type_ == 'int':
+        return f'INT64_C({int(value)})'
+    if type_ == 'byte':
+        return f'UINT8_C({int(value)})'
+    if type_ == 'double':
+        return repr(float(value))
+    return f'std::string({cpp_str(value)})'
+
+
+def string_lines(target: str, text: str, width: int = 72) -> list[str]:
+    """Assign a string literal to target, split into lines cpplint accepts.
+
+    Adjacent literals are joined by the compiler (see split_literal); no
+    literal is wider than width.
+    """
+    literals = split_literal(text, width, cpp_str)
+    if len(literals) <= 1:
+        return [f'{target} = {cpp_str(text)};']
+    return [f'{target} ='] + [f'  {literal}' for literal in literals[:-1]] + \
+        [f'  {literals[-1]};']
+
+
+def _default_lines(parameter: Parameter, ctype: str) -> list[str]:
+    """Return the statements that set ``default_value`` to the default."""
+    default = parameter.default
+    if isinstance(default, (tuple, list)):
+        element = parameter.type[:-2]
+        return [f'{ctype} default_value;'] + [
+            f'default_value.push_back({_cpp_value(v, element)});'
+            for v in default]
+    if isinstance(default, str):
+        return [f'{ctype} default_value;'] + string_lines('default_value', default)
+    return [f'const {ctype} default_value = '
+            f'{_cpp_value(parameter.default, parameter.type)};']
+
+
+def _range(parameter: Parameter) -> CppRange | None:
+    if parameter.range is None:
+        return None
+    integer = parameter.type == 'int'
+
+    def cast(value: float) -> str:
+        return f'INT64_C({int(value)})' if integer else repr(float(value))
+
+    return CppRange(
+        'integer_range' if integer else 'floating_point_range',
+        'rcl_interfaces::msg::IntegerRange' if integer
+        else 'rcl_interfaces::msg::FloatingPointRange',
+        cast(parameter.range.start), cast(parameter.range.end),
+        cast(parameter.range.step))
+
+
+def _parameter(parameter: Parameter) -> CppParameter:
+    ctype, accessor = PARAMETER_TYPES[parameter.type]
+    return CppParameter(
+        name=parameter.name, cpp_type=ctype, accessor=accessor,
+        default_lines=tuple(_default_lines(parameter, ctype)),
+        description_lines=tuple(string_lines('descriptor.description',
+                                             parameter.description)),
+        doc=parameter.description or f'The parameter {parameter.name}.',
+        read_only='true' if parameter.read_only else 'false',
+        range=_range(parameter))
+
+
+def _port(port: PortPlan) -> CppPort:
+    type_ = cpp_type(port.type)
+    delivers = port.kind.delivers
+    return CppPort(
+        name=port.name, entity=port.entity, type=type_,
+        member_type=MEMBER_TYPES[port.kind.entity].format(type=type_),
+        description=port.description,
+        # events: the QoS of the feedback topic
+        qos=tuple(qos_statements(port.qos)) if port.kind.topic_qos else (),
+        activity=port.activity, functions=port.functions,
+        # clients wait for answers in a group of their own, so that a
+        # blocking call from an activity never waits for its own thread
+        own_group=port.kind.own_group,
+        call_args=(CALL_ARGUMENTS.get(delivers) or ', '.join(port.kind.arguments))
+        if delivers is not None else '')
+
+
+def _signature(function: FunctionPlan) -> tuple[str, str]:
+    """Return the return type and parameters of a function."""
+    port = function.port
+    if port is None or port.kind.delivers is None:
+        return 'void', ''
+    type_ = cpp_type(port.type)
+    return (RETURN_TYPES[function.returns].format(type=type_),
+            PARAMETERS[port.kind.delivers].format(type=type_, port=port.name))
+
+
+def _function(cls: str, function: FunctionPlan) -> CppFunction:
+    code = None
+    if function.code is not None:
+        code = textwrap.indent(textwrap.dedent(function.code).strip('\n'), '  ')
+    returns, params = _signature(function)
+    param_list = tuple(p.strip() for p in params.split(', ')) if params else ()
+    name = function.name
+    longest = max(
+        len(f'  virtual {returns} {name}({params}) = 0;'),
+        len(f'{returns} {cls}_impl::{name}({params})'))
+    return CppFunction(
+        name=name, returns=returns, params=param_list,
+        param_names=tuple(p.rsplit(' ', 1)[1] for p in param_list),
+        wrap=longest > 100, code=code,
+        description=function.description or f'The function {name} of the model.')
+
+
+def _activity(activity: ActivityPlan) -> CppActivity:
+    return CppActivity(activity.name, activity.period, activity.period_ns,
+                       activity.functions,
+                       activity.description or f'The activity {activity.name}.')
+
+
+def _includes(plan: ComponentPlan) -> CppIncludes:
+    system = ['atomic', 'chrono', 'memory', 'mutex', 'string']
+    ros = ['rclcpp/rclcpp.hpp', 'rclcpp_lifecycle/lifecycle_node.hpp',
+           'rclcpp_lifecycle/lifecycle_publisher.hpp']
+    if plan.uses_actions:
+        ros.append('rclcpp_action/rclcpp_action.hpp')
+    for entity in plan.entities:
+        system += SYSTEM_INCLUDES.get(entity, ())
+    if any(p.type.endswith('[]') for p in plan.parameters):
+        system.append('vector')
+    ros += sorted({header_name(p.type) for p in plan.ports})
+    return CppIncludes(tuple(sorted(set(system))), tuple(ros))
+
+
+def spell_cpp(component: Component, plan: ComponentPlan) -> CppComponent:
+    """Spell the plan of a C++ component."""
+    package, cls = plan.package, plan.cls
+    banner = banner_of(component)
+    ports = tuple(_port(p) for p in plan.ports)
+    functions = tuple(_function(cls, f) for f in plan.functions)
+    activities = tuple(_activity(a) for a in plan.activities)
+    entities = plan.entities
+    client_packages = CPP_CLIENT_PACKAGES + (
+        ('rclcpp_action',) if plan.uses_actions else ())
+    # the parameter descriptors and the lifecycle states are used directly
+    interfaces = unique(('rcl_interfaces', 'lifecycle_msgs') + plan.depends)
+    build_depends = client_packages + interfaces
+    src = f'src-gen/{package}'
+    return CppComponent(
+        banner=banner, package=package, cls=cls, node_cls=plan.node_cls,
+        node_header=f'{package}/{plan.node_cls}.hpp',
+        description=plan.description or f'The component {cls}.',
+        includes=_includes(plan), ports=ports,
+        publishers=tuple(p for p in ports if p.entity == Entity.PUBLISHER),
+        action_servers=tuple(p for p in ports
+                             if p.entity == Entity.ACTION_SERVER),
+        activities=activities,
+        periodic=tuple(a for a in activities if a.period is not None),
+        functions=functions,
+        user_functions=tuple(f for f in functions if f.code is None),
+        parameters=tuple(_parameter(p) for p in plan.parameters),
+        lifecycle=dict(plan.lifecycle), threads=plan.threads,
+        has_impl=plan.has_impl,
+        uses_ports_header=any(p.kind.runtime_class for p in plan.ports),
+        query=Entity.CLIENT in entities,
+        action=Entity.ACTION_CLIENT in entities,
+        event=bool({Entity.EVENT_SERVER, Entity.EVENT_CLIENT} & entities),
+        find_packages=build_depends,
+        link_targets=tuple(f'{p}::{p}' for p in ('rclcpp', 'rclcpp_lifecycle')) +
+        (('rclcpp_action::rclcpp_action',) if plan.uses_actions else ()) +
+        ('rclcpp_components::component',),
+        interface_packages=interfaces,
+        sources=(f'{src}/{cls}.cpp',) +
+        ((f'src/{package}/{cls}_impl.cpp',) if plan.has_impl else ()) +
+        (f'{src}/{cls}_component.cpp',),
+        prefix_requirements=client_packages,
+        package_xml=package_xml(
+            banner, component.info, buildtool=['ament_cmake'],
+            depend=build_depends,
+            test=['ament_cmake_cpplint', 'ament_cmake_uncrustify']))

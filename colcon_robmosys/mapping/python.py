@@ -1,0 +1,409 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""How Python spells a component plan: imports, types, signatures and QoS.
+
+Nothing here decides what a port becomes (that is the port-kind table of
+:mod:`colcon_robmosys.mapping.portkinds`, read through
+:mod:`colcon_robmosys.mapping.component`): the tables below only spell it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import textwrap
+from typing import Any, Mapping
+
+from colcon_robmosys.mapping.common import (
+    Banner, banner_of, package_xml, PackageXml)
+from colcon_robmosys.mapping.component import (
+    ComponentPlan, FunctionPlan, PortPlan)
+from colcon_robmosys.mapping.portkinds import Entity, Returns
+from colcon_robmosys.mapping.qos import resolve_qos
+from colcon_robmosys.model.types import Component, InterfaceRef, Parameter, QoS
+
+#: entity -> the helper class of the node module it is an instance of
+HELPERS = {
+    Entity.CLIENT: 'QueryClient', Entity.ACTION_CLIENT: 'ActionClientPort',
+    Entity.EVENT_SERVER: 'EventServer', Entity.EVENT_CLIENT: 'EventClient',
+}
+
+_QOS_NAMES = frozenset({'DurabilityPolicy', 'HistoryPolicy', 'LivelinessPolicy',
+                        'QoSProfile', 'ReliabilityPolicy'})
+_ACTION_SERVER = frozenset({'ActionServer', 'CancelResponse', 'GoalResponse'})
+
+#: entity -> module -> the names its code imports (an empty set: the module)
+IMPORTS: dict[Entity, dict[str, frozenset[str]]] = {
+    Entity.PUBLISHER: {'rclpy.qos': _QOS_NAMES},
+    Entity.SUBSCRIPTION: {'rclpy.qos': _QOS_NAMES},
+    Entity.SERVICE: {},
+    Entity.CLIENT: {'time': frozenset(), 'rclpy.task': frozenset({'Future'})},
+    Entity.ACTION_SERVER: {'rclpy.action': _ACTION_SERVER},
+    Entity.ACTION_CLIENT: {
+        'time': frozenset(), 'rclpy.task': frozenset({'Future'}),
+        'rclpy.action': frozenset({'ActionClient'})},
+    Entity.EVENT_SERVER: {
+        'rclpy.qos': _QOS_NAMES, 'time': frozenset(),
+        'rclpy.task': frozenset({'Future'}), 'rclpy.action': _ACTION_SERVER},
+    Entity.EVENT_CLIENT: {
+        'rclpy.qos': _QOS_NAMES, 'time': frozenset(),
+        'rclpy.task': frozenset({'Future'}),
+        'rclpy.action': frozenset({'ActionClient'}),
+        'action_msgs.msg': frozenset({'GoalStatus'})},
+}
+
+#: entity -> the node method that destroys it (others have a destroy())
+DESTROY = {
+    Entity.PUBLISHER: 'destroy_lifecycle_publisher',
+    Entity.SUBSCRIPTION: 'destroy_subscription',
+    Entity.SERVICE: 'destroy_service',
+}
+
+#: entity -> packages its code needs at run time
+EXEC_DEPENDS = {Entity.EVENT_CLIENT: ('action_msgs',)}
+
+#: what a function gives back -> its annotation
+RETURN_TYPES = {
+    Returns.NOTHING: 'None', Returns.ANSWER: '{type}.Response',
+    Returns.RESULT: '{type}.Result', Returns.CONDITION: 'bool',
+}
+
+#: model type -> (Python type, ParameterType name)
+PARAMETER_TYPES = {
+    'bool': ('bool', 'BOOL'), 'int': ('int', 'INTEGER'),
+    'double': ('float', 'DOUBLE'), 'string': ('str', 'STRING'),
+    'bool[]': ('list[bool]', 'BOOL_ARRAY'),
+    'int[]': ('list[int]', 'INTEGER_ARRAY'),
+    'double[]': ('list[float]', 'DOUBLE_ARRAY'),
+    'string[]': ('list[str]', 'STRING_ARRAY'),
+    'byte[]': ('bytes', 'BYTE_ARRAY'),
+}
+
+#: Modules of the Python standard library the generated code imports.
+STDLIB = frozenset({'os', 'sys', 'threading', 'time', 'traceback'})
+
+
+@dataclass(frozen=True)
+class PyPort:
+    """A port as the Python node creates it."""
+
+    name: str
+    description: str
+    entity: str
+    type: str
+    type_full: str
+    #: the QoS profile expression, for ports that use a topic
+    qos: str | None
+    qos_const: str
+    activity: str | None
+    callback: str
+    functions: tuple[str, ...]
+    #: the node method that destroys it, if it has no destroy() of its own
+    destroy: str | None
+
+
+@dataclass(frozen=True)
+class PyFunction:
+    """A function of the model as a method."""
+
+    name: str
+    args: tuple[str, ...]
+    code: str | None
+    returns: str
+    default_return: str
+    description: str
+
+
+@dataclass(frozen=True)
+class PyRange:
+    """The range of a numeric parameter's descriptor."""
+
+    field: str
+    cls: str
+    start: str
+    end: str
+    step: str
+
+
+@dataclass(frozen=True)
+class PyParameter:
+    """A parameter: its declaration with a descriptor, and its accessor."""
+
+    name: str
+    py_type: str
+    ros_type: str
+    default: Any
+    description: str
+    doc: str
+    read_only: bool
+    range: PyRange | None
+
+
+@dataclass(frozen=True)
+class PyActivity:
+    """A periodic activity and its timer."""
+
+    name: str
+    period: float | None
+    functions: tuple[str, ...]
+    description: str
+
+
+@dataclass(frozen=True)
+class PyComponent:
+    """Everything the templates of a Python component print."""
+
+    banner: Banner
+    package: str
+    cls: str
+    node_cls: str
+    node_module: str
+    description: str
+    node_imports: tuple[str, ...]
+    main_imports: tuple[str, ...]
+    impl_imports: tuple[str, ...]
+    ports: tuple[PyPort, ...]
+    #: the periodic activities
+    activities: tuple[PyActivity, ...]
+    activity_names: tuple[str, ...]
+    #: the helper classes the node module defines
+    helpers: tuple[str, ...]
+    functions: tuple[PyFunction, ...]
+    user_functions: tuple[PyFunction, ...]
+    parameters: tuple[PyParameter, ...]
+    lifecycle: Mapping[str, tuple[str, ...]]
+    has_impl: bool
+    #: packages it builds against (its interfaces), and runs with
+    depends: tuple[str, ...]
+    exec_depends: tuple[str, ...]
+    package_xml: PackageXml
+    skeleton: bool = False
+
+    @property
+    def impl_path(self) -> str:
+        """Return where the user's implementation lives, next to the model."""
+        return f'src/{self.package}/{self.cls}_impl.py'
+
+
+def import_lines(modules: Mapping[str, set[str] | frozenset[str]]) -> tuple[str, ...]:
+    """Write ``from module import names`` lines, sorted as flake8 wants.
+
+    An empty set of names stands for ``import module``. The standard
+    library comes first, then a blank line, then the other modules.
+    """
+    groups: list[list[str]] = [[], []]
+    for module in sorted(modules, key=str.lower):
+        lines = groups[0 if module in STDLIB else 1]
+        if not modules[module]:
+            lines.append(f'import {module}')
+            continue
+        names = ', '.join(sorted(modules[module], key=str.lower))
+        line = f'from {module} import {names}'
+        if len(line) > 99:
+            items = ''.join(f'    {n},\n' for n in
+                            sorted(modules[module], key=str.lower))
+            line = f'from {module} import (\n{items})'
+        lines.append(line)
+    if groups[0] and groups[1]:
+        return tuple(groups[0] + [''] + groups[1])
+    return tuple(groups[0] + groups[1])
+
+
+def _add(modules: dict[str, set[str]], module: str, names: frozenset[str] | set[str]) -> None:
+    modules.setdefault(module, set()).update(names)
+
+
+def _node_imports(names: dict[InterfaceRef, str], plan: ComponentPlan,
+                  uses_duration: bool) -> tuple[str, ...]:
+    modules: dict[str, set[str]] = {
+        'rclpy.lifecycle': {'LifecycleNode', 'LifecycleState',
+                            'TransitionCallbackReturn'},
+    }
+    if plan.ports or plan.activities or plan.lifecycle:
+        # every piece of user code runs in a try that logs the traceback
+        modules['traceback'] = set()
+    for ref, local in names.items():
+        alias = '' if local == ref.name else f' as {local}'
+        _add(modules, f'{ref.package}.{ref.kind.value}', {f'{ref.name}{alias}'})
+    if plan.parameters:
+        _add(modules, 'rcl_interfaces.msg', {'ParameterDescriptor'})
+        for parameter in plan.parameters:
+            if parameter.range is not None:
+                _add(modules, 'rcl_interfaces.msg', {
+                    'IntegerRange' if parameter.type == 'int'
+                    else 'FloatingPointRange'})
+    if plan.activities or any(p.kind.runtime_class for p in plan.ports):
+        # a callback group and a lock per activity, and in the port helpers
+        modules['rclpy.callback_groups'] = {'MutuallyExclusiveCallbackGroup'}
+        modules['threading'] = set()
+    for entity in plan.entities:
+        for module, imported in IMPORTS[entity].items():
+            _add(modules, module, imported)
+    if uses_duration:
+        modules['rclpy.duration'] = {'Duration'}
+    return import_lines(modules)
+
+
+def _python_names(refs: list[InterfaceRef]) -> dict[InterfaceRef, str]:
+    """Name each interface type in Python; alias only clashing names."""
+    by_name: dict[str, set[str]] = {}
+    for ref in refs:
+        by_name.setdefault(ref.name, set()).add(ref.package)
+    return {ref: ref.name if len(by_name[ref.name]) == 1
+            else f'{ref.package}_{ref.name}' for ref in refs}
+
+
+def qos_expression(qos: QoS) -> str:
+    """Return the rclpy expression of a port's QoS, every policy explicit."""
+    resolved = resolve_qos(qos)
+    args = [f'history=HistoryPolicy.{resolved.history.upper()}']
+    if resolved.history == 'keep_last':
+        args.append(f'depth={resolved.depth}')
+    if resolved.adaptive and qos.reliability is None:
+        args.append('reliability=ReliabilityPolicy.BEST_AVAILABLE')
+    else:
+        args.append(
+            f'reliability=ReliabilityPolicy.{resolved.reliability.upper()}')
+    if resolved.adaptive and qos.durability is None:
+        args.append('durability=DurabilityPolicy.BEST_AVAILABLE')
+    else:
+        args.append(
+            f'durability=DurabilityPolicy.{resolved.durability.upper()}')
+    for name in ('deadline', 'lifespan', 'liveliness_lease_duration'):
+        seconds = getattr(resolved, name)
+        if seconds is not None:
+            args.append(f'{name}=Duration(seconds={seconds!r})')
+    args.append(
+        f'liveliness=LivelinessPolicy.{resolved.liveliness.upper()}')
+    return 'QoSProfile(\n' + ''.join(f'    {a},\n' for a in args) + ')'
+
+
+def _default_body(returns: str) -> str:
+    """Return what an unimplemented function of the skeleton returns."""
+    if returns == 'bool':
+        return 'return True'
+    if returns.endswith('.Response'):
+        return 'return response'
+    if returns != 'None':
+        return f'return {returns}()'
+    return ''
+
+
+def _doc(summary: str, text: str) -> str:
+    return f'{summary}\n\n{text}' if text.strip() else summary
+
+
+def _class_doc(cls: str, description: str) -> str:
+    """Return the docstring of the node class.
+
+    The first line of the model's description is its summary when it fits
+    on the line of the class docstring; pep257 wants a one-line summary and
+    ament_flake8 lines of at most 99 characters.
+    """
+    lines = description.strip().splitlines()
+    # 4 spaces, two triple quotes and the period pep257 may add
+    if lines and len(lines[0].replace('\\', '\\\\')) + 11 <= 99:
+        return description
+    return _doc(f'The lifecycle node of the component {cls}.', description)
+
+
+def _port(port: PortPlan, type_name: str) -> PyPort:
+    return PyPort(
+        name=port.name, description=port.description, entity=port.entity,
+        type=type_name, type_full=str(port.type),
+        # query and action ports use the QoS of services and actions
+        qos=qos_expression(port.qos) if port.kind.topic_qos else None,
+        qos_const=f'QOS_{port.name.upper()}', activity=port.activity,
+        callback=f'_on_{port.name}', functions=port.functions,
+        destroy=DESTROY.get(port.kind.entity))
+
+
+def _range(parameter: Parameter) -> PyRange | None:
+    if parameter.range is None:
+        return None
+    integer = parameter.type == 'int'
+    cast = int if integer else float
+    return PyRange(
+        'integer_range' if integer else 'floating_point_range',
+        'IntegerRange' if integer else 'FloatingPointRange',
+        repr(cast(parameter.range.start)), repr(cast(parameter.range.end)),
+        repr(cast(parameter.range.step)))
+
+
+def _parameter(parameter: Parameter) -> PyParameter:
+    py_type, ros_type = PARAMETER_TYPES[parameter.type]
+    default: Any = parameter.default
+    if isinstance(default, tuple):
+        default = list(default)
+    if parameter.type == 'byte[]':
+        default = [bytes([b]) for b in default]
+    return PyParameter(
+        name=parameter.name, py_type=py_type, ros_type=ros_type,
+        default=default, description=parameter.description,
+        # pep257 wants an imperative summary; the model's text follows it
+        doc=_doc(f'Return the parameter {parameter.name}.',
+                 parameter.description),
+        read_only=parameter.read_only, range=_range(parameter))
+
+
+def _function(function: FunctionPlan,
+              type_names: dict[InterfaceRef, str]) -> PyFunction:
+    code = None
+    if function.code is not None:
+        code = textwrap.indent(
+            textwrap.dedent(function.code).strip('\n'), ' ' * 8) or \
+            ' ' * 8 + 'pass'
+    type_ = type_names[function.port.type] if function.port else ''
+    returns = RETURN_TYPES[function.returns].format(type=type_)
+    return PyFunction(
+        name=function.name, args=function.arguments, code=code,
+        returns=returns, default_return=_default_body(returns),
+        description=_doc(f'Run the function {function.name} of the model.',
+                         function.description))
+
+
+def spell_python(component: Component, plan: ComponentPlan) -> PyComponent:
+    """Spell the plan of a Python component."""
+    package, cls = plan.package, plan.cls
+    type_names = _python_names([p.type for p in plan.ports])
+    ports = tuple(_port(p, type_names[p.type]) for p in plan.ports)
+    functions = tuple(_function(f, type_names) for f in plan.functions)
+    user_functions = tuple(f for f in functions if f.code is None)
+    uses_duration = 'Duration(' in ''.join(p.qos or '' for p in ports)
+    node_module = f'{cls}_impl' if plan.has_impl else cls
+    # the user's file imports the types its signatures name
+    used = {f.returns.split('.')[0] for f in user_functions}
+    impl_modules: dict[str, set[str]] = {f'{package}.{cls}': {cls}}
+    for ref, local in type_names.items():
+        if local in used:
+            alias = '' if local == ref.name else f' as {local}'
+            _add(impl_modules, f'{ref.package}.{ref.kind.value}',
+                 {f'{ref.name}{alias}'})
+    exec_depends = ('rclpy', 'lifecycle_msgs', 'rcl_interfaces') + tuple(
+        d for p in plan.ports for d in EXEC_DEPENDS.get(p.kind.entity, ())
+    ) + plan.depends
+    banner = banner_of(component)
+    return PyComponent(
+        banner=banner, package=package, cls=cls, node_cls=plan.node_cls,
+        node_module=node_module,
+        description=_class_doc(cls, plan.description),
+        node_imports=_node_imports(type_names, plan, uses_duration),
+        main_imports=import_lines({
+            'os': set(), 'rclpy': set(),
+            'rclpy.executors': {'ExternalShutdownException',
+                                'MultiThreadedExecutor'},
+            f'{package}.{node_module}': {plan.node_cls}}),
+        impl_imports=import_lines(impl_modules),
+        ports=ports,
+        activities=tuple(PyActivity(a.name, a.period, a.functions, a.description)
+                         for a in plan.activities if a.period is not None),
+        activity_names=tuple(a.name for a in plan.activities),
+        helpers=tuple(sorted({HELPERS[e] for e in plan.entities if e in HELPERS})),
+        functions=functions, user_functions=user_functions,
+        parameters=tuple(_parameter(p) for p in plan.parameters),
+        lifecycle=dict(plan.lifecycle), has_impl=plan.has_impl,
+        depends=plan.depends, exec_depends=exec_depends,
+        package_xml=package_xml(
+            banner, component.info,
+            buildtool=['ament_cmake', 'ament_cmake_python'],
+            exec_=exec_depends))

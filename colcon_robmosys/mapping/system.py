@@ -1,0 +1,265 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""Systems become packages of launch files, parameters and a diagram."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Any
+
+from colcon_robmosys.mapping.common import (
+    Banner, banner_of, package_xml, PackageXml, unique)
+from colcon_robmosys.mapping.names import connection_name, node_name
+from colcon_robmosys.model.build import freeze_parameter_value
+from colcon_robmosys.model.types import (
+    Component, Connection, Instance, Pattern, PortRef, Role, System,
+    Workspace)
+
+PARAMS_FILE = 'cfg/params.yaml'
+
+#: The patterns whose data goes from the required port to the provided one.
+_TO_PROVIDER = (Pattern.SEND, Pattern.QUERY, Pattern.ACTION)
+
+
+@dataclass(frozen=True)
+class SystemNode:
+    """An instance as a lifecycle node of the launch files."""
+
+    instance: str
+    package: str
+    executable: str
+    name: str
+    namespace: str
+    #: (port, ROS 2 name) for each connected port
+    remappings: tuple[tuple[str, str], ...]
+    activate: bool
+    after: tuple[str, ...]
+    fqn: str
+    #: the instances of the same launch file it waits for
+    activate_after: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class LaunchFile:
+    """A launch file, and its activate twin: all instances or one."""
+
+    suffix: str
+    banner: Banner
+    package: str
+    params_file: str
+    nodes: tuple[SystemNode, ...]
+    what: str
+
+
+@dataclass(frozen=True)
+class NodeParameters:
+    """The parameter overrides of one node, in cfg/params.yaml."""
+
+    fqn: str
+    values: tuple[tuple[str, Any], ...]
+
+
+@dataclass(frozen=True)
+class DiagramPort:
+    """A port in the diagram."""
+
+    name: str
+    role: str
+    pattern: str
+
+
+@dataclass(frozen=True)
+class DiagramInstance:
+    """An instance in the diagram."""
+
+    name: str
+    fqn: str
+    component: str
+    package: str
+    managed: bool
+    ports: tuple[DiagramPort, ...]
+
+
+@dataclass(frozen=True)
+class DiagramEdge:
+    """A connection in the diagram, drawn the way the data flows."""
+
+    source: str
+    source_port: str
+    target: str
+    target_port: str
+    label: str
+
+
+@dataclass(frozen=True)
+class SystemPackage:
+    """The plan of a system package."""
+
+    banner: Banner
+    package: str
+    name: str
+    #: in activation order
+    nodes: tuple[SystemNode, ...]
+    launch_files: tuple[LaunchFile, ...]
+    #: the parameter file's nodes
+    params: tuple[NodeParameters, ...]
+    diagram: str
+    instances: tuple[DiagramInstance, ...]
+    edges: tuple[DiagramEdge, ...]
+    depends: tuple[str, ...]
+    exec_depends: tuple[str, ...]
+    package_xml: PackageXml
+
+
+def node_fqn(instance: Instance) -> str:
+    """Return the fully qualified node name of an instance."""
+    return node_name(instance.namespace, instance.name)
+
+
+def provided_end(connection: Connection, components: dict[str, Component]
+                 ) -> PortRef:
+    """Return the end of a valid connection whose port is provided."""
+    for end in (connection.source, connection.target):
+        port = components[end.instance].port(end.port)
+        assert port is not None
+        if port.role is Role.PROVIDED:
+            return end
+    raise AssertionError(f'no provided end in {connection}')
+
+
+def connection_topics(system: System, components: dict[str, Component]
+                      ) -> dict[tuple[str, str], str]:
+    """Return the ROS 2 name every connected port is remapped to.
+
+    The provided end names a connection (see
+    :func:`colcon_robmosys.model.names.connection_name`): the publisher of
+    a push port, the server of a send, query, action or event port. The
+    validation made sure a port takes one name only.
+    """
+    topics: dict[tuple[str, str], str] = {}
+    for connection in system.connections:
+        provided = provided_end(connection, components)
+        instance = system.instance(provided.instance)
+        assert instance is not None
+        topic = connection_name(instance.namespace, provided.instance,
+                                provided.port, connection.topic)
+        for end in (connection.source, connection.target):
+            topics[(end.instance, end.port)] = topic
+    return topics
+
+
+def activation_order(system: System) -> list[Instance]:
+    """Return the instances in an order that respects ``after``."""
+    done: list[Instance] = []
+    pending = list(system.instances)
+    while pending:
+        ready = [i for i in pending
+                 if all(a in {d.name for d in done} for a in i.after)]
+        if not ready:  # a cycle, reported by validation
+            ready = pending[:1]
+        done.append(ready[0])
+        pending.remove(ready[0])
+    return done
+
+
+def _node(instance: Instance, component: Component,
+          topics: dict[tuple[str, str], str]) -> SystemNode:
+    return SystemNode(
+        instance=instance.name, package=component.package,
+        executable=component.name, name=instance.name,
+        namespace=instance.namespace,
+        remappings=tuple((p.name, topics[(instance.name, p.name)])
+                         for p in component.ports
+                         if (instance.name, p.name) in topics),
+        activate=instance.activate, after=instance.after,
+        fqn=node_fqn(instance))
+
+
+def _launch_files(system: System, nodes: tuple[SystemNode, ...],
+                  banner: Banner) -> tuple[LaunchFile, ...]:
+    variants = [('', nodes, f'every instance of the system {system.name}')]
+    variants += [(f'.{n.instance}', (n,), f'the instance {n.instance} '
+                  f'of the system {system.name}') for n in nodes]
+    files = []
+    for suffix, selected, what in variants:
+        # a file waits only for instances it activates itself: an instance
+        # started by another file, or left unmanaged, would never be seen
+        managed = {n.instance for n in selected if n.activate}
+        files.append(LaunchFile(
+            suffix, banner, system.package, PARAMS_FILE,
+            tuple(replace(n, activate_after=tuple(a for a in n.after
+                                                  if a in managed))
+                  for n in selected), what))
+    return tuple(files)
+
+
+def _parameters(system: System, components: dict[str, Component]
+                ) -> tuple[NodeParameters, ...]:
+    nodes = []
+    for instance in system.instances:
+        if not instance.parameters:
+            continue
+        types = {p.name: p.type for p in components[instance.name].parameters}
+        # ROS 2 refuses an integer for a parameter declared as double
+        nodes.append(NodeParameters(node_fqn(instance), tuple(
+            (name, freeze_parameter_value(types[name], value))
+            for name, value in instance.parameters)))
+    return tuple(nodes)
+
+
+def _instances(system: System, components: dict[str, Component]
+               ) -> tuple[DiagramInstance, ...]:
+    return tuple(
+        DiagramInstance(
+            name=i.name, fqn=node_fqn(i), component=components[i.name].name,
+            package=components[i.name].package, managed=i.activate,
+            ports=tuple(DiagramPort(p.name, p.role.value, p.pattern.value)
+                        for p in components[i.name].ports))
+        for i in system.instances)
+
+
+def _edges(system: System, components: dict[str, Component],
+           topics: dict[tuple[str, str], str]) -> tuple[DiagramEdge, ...]:
+    edges = []
+    for connection in system.connections:
+        source = provided_end(connection, components)
+        target = (connection.target if source == connection.source
+                  else connection.source)
+        port = components[source.instance].port(source.port)
+        assert port is not None
+        # arrows follow the data: from the publisher of push and event, to
+        # the server of send, query and action
+        if port.pattern in _TO_PROVIDER:
+            source, target = target, source
+        edges.append(DiagramEdge(
+            source.instance, source.port, target.instance, target.port,
+            f'{port.pattern.value} {port.type}\\n'
+            f'{topics[(source.instance, source.port)]}'))
+    return tuple(edges)
+
+
+def plan_system(system: System, workspace: Workspace) -> SystemPackage:
+    """Map a checked system to its package plan."""
+    components: dict[str, Component] = {}
+    for instance in system.instances:
+        component = workspace.model(instance.component)
+        assert isinstance(component, Component)
+        components[instance.name] = component
+    topics = connection_topics(system, components)
+    banner = banner_of(system)
+    nodes = tuple(_node(i, components[i.name], topics)
+                  for i in activation_order(system))
+    packages = unique(c.package for c in components.values())
+    exec_depends = packages + ('launch', 'launch_ros', 'lifecycle_msgs',
+                               'ament_index_python')
+    return SystemPackage(
+        banner=banner, package=system.package, name=system.name, nodes=nodes,
+        launch_files=_launch_files(system, nodes, banner),
+        params=_parameters(system, components),
+        diagram=f'doc/{system.package}.dot',
+        instances=_instances(system, components),
+        edges=_edges(system, components, topics),
+        depends=packages, exec_depends=exec_depends,
+        package_xml=package_xml(banner, system.info, buildtool=['ament_cmake'],
+                                exec_=exec_depends))
