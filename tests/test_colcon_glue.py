@@ -57,7 +57,7 @@ def test_colcon_list_shows_one_package_per_model(workspace):
         ('examples_system', '(robmosys.system)'),
         ('fibonacci_client', '(robmosys.component)'),
         ('fibonacci_server', '(robmosys.component)'),
-        ('hand_level_sensor', '(ros.ament_python)'),
+        ('hand_level_sensor', '(ros.ament_cmake)'),
         ('level_sensor', '(robmosys.component)'),
         ('level_watcher', '(robmosys.component)'),
         ('map_tools', '(ros.ament_cmake)'),

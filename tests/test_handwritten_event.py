@@ -2,7 +2,7 @@
 # Licensed under the Apache License, Version 2.0
 """A hand-written rclpy node serves an event port to a generated component, on real ROS 2.
 
-test_workspace's hand_level_sensor is an ordinary ament_python package: its node
+test_workspace's hand_level_sensor is an ordinary ament_cmake package (rclpy): its node
 serves the event port eLevel with robmosys_runtime's EventServer. The generated
 level_watcher requires that port; it activates the event continuously and once.
 """

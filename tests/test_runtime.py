@@ -18,7 +18,7 @@ import sys
 import pytest
 
 from colcon_robmosys.runtime import installed_runtime, RUNTIME_PACKAGE, runtime_source
-from conftest import BuiltWorkspace, build_workspace, requires_ros
+from conftest import build_workspace, BuiltWorkspace, requires_ros
 from harness import ros_env
 
 MODEL = """\
@@ -113,7 +113,7 @@ def test_the_python_module_is_typed():
 
 @pytest.fixture(scope='module')
 def without_underlay(tmp_path_factory) -> BuiltWorkspace:
-    """A workspace of one model, built where no underlay has robmosys_runtime."""
+    """Return a workspace of one model, built where no underlay has robmosys_runtime."""
     root = tmp_path_factory.mktemp('runtime_ws')
     src = _model_workspace(tmp_path_factory.mktemp('runtime_src'))
     return build_workspace(src, root)
