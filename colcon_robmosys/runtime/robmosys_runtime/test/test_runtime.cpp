@@ -110,6 +110,7 @@ public:
   : ComponentNode("counter", rclcpp::NodeOptions())
   {
     add_activity("Tick");
+    add_activity("Answer");
     set_lifecycle(
       "on_configure", [this]() {
         if (fail_configure) {
@@ -126,11 +127,27 @@ public:
   std::atomic<bool> fail_configure{false};
   std::atomic<int> count{0};
   std::shared_ptr<rclcpp_lifecycle::LifecyclePublisher<std_msgs::msg::Int32>> pCount;
+  rclcpp::Service<BasicTypes>::SharedPtr qDouble;
+  rclcpp::Subscription<std_msgs::msg::Int32>::SharedPtr sCount;
+  std::atomic<int> received{0};
 
 protected:
   void create_ports() override
   {
     keep_publisher(pCount, create_publisher<std_msgs::msg::Int32>("pCount", 10));
+    rclcpp::SubscriptionOptions options;
+    options.callback_group = activity("Answer");
+    keep(
+      sCount, create_subscription<std_msgs::msg::Int32>(
+        "pCount", 10, in_activity<const std_msgs::msg::Int32 &>(
+          "Answer", [this](const std_msgs::msg::Int32 & message) {received = message.data;}),
+        options));
+    keep(
+      qDouble, create_query_server<BasicTypes>(
+        "qDouble", "Answer",
+        [](const BasicTypes::Request & request, BasicTypes::Response & response) {
+          response.int32_value = 2 * request.int32_value;
+        }));
     add_periodic(
       "Tick", 20ms, [this]() {
         std_msgs::msg::Int32 message;
@@ -228,12 +245,38 @@ void component_ports_live_from_configure_to_cleanup()
   node->activate();
   EXPECT(node->is_active());
   EXPECT(wait_until([&node]() {return node->count >= 4;}));  // a failing tick went on
+  EXPECT(wait_until([&node]() {return node->received >= 3;}));
   node->deactivate();
   const int stopped = node->count;
   std::this_thread::sleep_for(100ms);
   EXPECT(node->count <= stopped + 1);
   node->cleanup();
   EXPECT(node->pCount == nullptr);
+  runtime.stop();
+}
+
+void queries_are_answered_while_active_only()
+{
+  Runtime runtime;
+  auto node = std::make_shared<Counter>();
+  auto asker = std::make_shared<rclcpp::Node>("asker");
+  robmosys_runtime::QueryClient<BasicTypes> query(asker->create_client<BasicTypes>("qDouble"));
+  runtime.spin(node);
+  runtime.spin(asker);
+  runtime.start();
+  node->configure();
+  EXPECT(query.wait_for_service(10s));
+  // the service is there; its answers may reach the client a moment later
+  std::this_thread::sleep_for(500ms);
+  BasicTypes::Request request;
+  request.int32_value = 21;
+  EXPECT(query.call(request)->int32_value == 0);  // inactive: the default response
+  node->activate();
+  EXPECT(query.call(request)->int32_value == 42);
+  query.call_async(request);  // no callback: nothing runs
+  node->deactivate();
+  node->cleanup();
+  EXPECT(node->qDouble == nullptr);
   runtime.stop();
 }
 
@@ -251,10 +294,18 @@ void a_throwing_hook_fails_its_transition()
 
 int main()
 {
-  query_client();
-  events_reach_the_activations_whose_condition_holds();
-  component_ports_live_from_configure_to_cleanup();
-  a_throwing_hook_fails_its_transition();
+  for (const auto & test : std::vector<std::function<void()>>{
+    query_client, events_reach_the_activations_whose_condition_holds,
+    component_ports_live_from_configure_to_cleanup, queries_are_answered_while_active_only,
+    a_throwing_hook_fails_its_transition})
+  {
+    try {
+      test();
+    } catch (const std::exception & error) {
+      std::fprintf(stderr, "test_runtime.cpp: unexpected exception: %s\n", error.what());
+      ++failures;
+    }
+  }
   std::fprintf(stderr, "%d check(s) failed\n", failures);
   return failures == 0 ? 0 : 1;
 }

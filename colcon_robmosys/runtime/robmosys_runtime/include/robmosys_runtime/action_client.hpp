@@ -38,9 +38,10 @@ public:
   using FeedbackCallback = std::function<void (const Feedback &)>;
   using ResultCallback = std::function<void (const Result &)>;
 
+  /// Wrap a client; on_result (nullptr: nothing) runs for the results of send_goal_async().
   ActionClient(
     typename rclcpp_action::Client<ActionT>::SharedPtr client, std::string name,
-    ResultCallback on_result)
+    ResultCallback on_result = nullptr)
   : client_(std::move(client)), name_(std::move(name)), on_result_(std::move(on_result))
   {
   }
@@ -51,7 +52,7 @@ public:
   {
     auto options = feedback_options(feedback);
     options.result_callback = [callback = on_result_](const WrappedResult & result) {
-        if (result.result) {
+        if (callback && result.result) {
           callback(*result.result);
         }
       };

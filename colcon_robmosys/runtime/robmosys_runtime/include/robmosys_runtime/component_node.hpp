@@ -28,6 +28,18 @@
 namespace robmosys_runtime
 {
 
+namespace detail
+{
+
+/// T, in a context where no template argument is deduced (std::type_identity of C++20).
+template<typename T>
+struct identity
+{
+  using type = T;
+};
+
+}  // namespace detail
+
 /// A lifecycle node whose ports and timers live from configure to cleanup.
 /**
  * A subclass creates its ports and timers in create_ports() (called on
@@ -78,6 +90,20 @@ protected:
     return activities_.at(name);
   }
 
+  /// Return the callback group of a port's own (created once), for clients that block.
+  /**
+   * A blocking call from an activity waits for its answer, delivered in the
+   * client's own group by another thread of the multi-threaded executor.
+   */
+  rclcpp::CallbackGroup::SharedPtr own_group(const std::string & port)
+  {
+    auto & group = own_groups_[port];
+    if (!group) {
+      group = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+    }
+    return group;
+  }
+
   /// Set the functions a transition ("on_configure", "on_activate", ...) runs.
   void set_lifecycle(const std::string & transition, std::function<void()> functions)
   {
@@ -108,7 +134,8 @@ protected:
    */
   template<typename ... Args>
   std::function<void(Args...)> in_activity(
-    const std::string & activity, std::function<void(Args...)> functions)
+    const std::string & activity,
+    typename detail::identity<std::function<void(Args...)>>::type functions)
   {
     return [this, activity, functions](Args... received) {
              if (!is_active()) {
@@ -132,6 +159,34 @@ protected:
     timer->cancel();
     timers_.push_back(timer);
     return timer;
+  }
+
+  /// Create a service whose requests a function of an activity answers.
+  /**
+   * While the node is inactive, requests get the default response; an
+   * exception of the function is logged, and the response goes as it is.
+   */
+  template<typename ServiceT>
+  typename rclcpp::Service<ServiceT>::SharedPtr create_query_server(
+    const std::string & name, const std::string & activity,
+    std::function<void(const typename ServiceT::Request &, typename ServiceT::Response &)> answer)
+  {
+    return create_service<ServiceT>(
+      name, [this, name, activity, answer](
+        const std::shared_ptr<typename ServiceT::Request> request,
+        std::shared_ptr<typename ServiceT::Response> response) {
+        if (!is_active()) {
+          RCLCPP_WARN(
+            get_logger(), "query on the port %s while inactive: "
+            "answering with the default response", name.c_str());
+          return;
+        }
+        try {
+          answer(*request, *response);
+        } catch (const std::exception & error) {
+          activity_failed(activity, error.what());
+        }
+      }, rclcpp::ServicesQoS(), activities_.at(activity));
   }
 
   /// Create an action server whose goals a function of an activity executes.
@@ -318,6 +373,7 @@ private:
 
   std::atomic<bool> active_{false};
   std::map<std::string, rclcpp::CallbackGroup::SharedPtr> activities_;
+  std::map<std::string, rclcpp::CallbackGroup::SharedPtr> own_groups_;
   std::map<std::string, std::function<void()>> lifecycle_;
   std::vector<rclcpp::TimerBase::SharedPtr> timers_;
   std::vector<std::shared_ptr<rclcpp_lifecycle::ManagedEntityInterface>> publishers_;

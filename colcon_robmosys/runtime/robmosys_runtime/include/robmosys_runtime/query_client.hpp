@@ -34,7 +34,9 @@ public:
   using Response = typename ServiceT::Response;
   using AnswerCallback = std::function<void (const Response &)>;
 
-  QueryClient(typename rclcpp::Client<ServiceT>::SharedPtr client, AnswerCallback on_answer)
+  /// Wrap a client; on_answer (nullptr: nothing) runs for the answers of call_async().
+  QueryClient(
+    typename rclcpp::Client<ServiceT>::SharedPtr client, AnswerCallback on_answer = nullptr)
   : client_(std::move(client)), on_answer_(std::move(on_answer))
   {
   }
@@ -63,7 +65,9 @@ public:
     client_->async_send_request(
       std::make_shared<Request>(request),
       [callback = on_answer_](typename rclcpp::Client<ServiceT>::SharedFuture future) {
-        callback(*future.get());
+        if (callback) {
+          callback(*future.get());
+        }
       });
   }
 
