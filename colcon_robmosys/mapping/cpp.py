@@ -63,11 +63,16 @@ RETURN_TYPES = {
     Returns.RESULT: '{type}::Result', Returns.CONDITION: 'bool',
 }
 
-#: what a port delivers -> how its callback passes it on, if not by name
-CALL_ARGUMENTS = {Delivery.REQUEST: '*request, *response'}
+#: entity -> the header of robmosys_runtime its member type needs
+RUNTIME_HEADERS = {
+    Entity.CLIENT: 'robmosys_runtime/query_client.hpp',
+    Entity.ACTION_CLIENT: 'robmosys_runtime/action_client.hpp',
+    Entity.EVENT_SERVER: 'robmosys_runtime/event_server.hpp',
+    Entity.EVENT_CLIENT: 'robmosys_runtime/event_client.hpp',
+}
 
-#: entity -> standard headers its code needs beyond the usual ones
-SYSTEM_INCLUDES = {Entity.ACTION_SERVER: ('future', 'vector')}
+#: the runtime package: the lifecycle bookkeeping and the ports' classes
+RUNTIME_PACKAGE = 'robmosys_runtime'
 
 #: model type -> (C++ type, ParameterValue accessor)
 PARAMETER_TYPES = {
@@ -179,15 +184,10 @@ class CppComponent:
     functions: tuple[CppFunction, ...]
     user_functions: tuple[CppFunction, ...]
     parameters: tuple[CppParameter, ...]
-    #: transition -> functions run on it
+    #: transition -> functions run on it (the transitions that run any)
     lifecycle: Mapping[str, tuple[str, ...]]
     threads: int
     has_impl: bool
-    #: the runtime classes of ports.hpp it needs
-    uses_ports_header: bool
-    query: bool
-    action: bool
-    event: bool
     find_packages: tuple[str, ...]
     link_targets: tuple[str, ...]
     interface_packages: tuple[str, ...]
@@ -336,8 +336,7 @@ def _port(port: PortPlan) -> CppPort:
         # clients wait for answers in a group of their own, so that a
         # blocking call from an activity never waits for its own thread
         own_group=port.kind.own_group,
-        call_args=(CALL_ARGUMENTS.get(delivers) or ', '.join(port.kind.arguments))
-        if delivers is not None else '')
+        call_args=', '.join(port.kind.arguments) if delivers is not None else '')
 
 
 def _signature(function: FunctionPlan) -> tuple[str, str]:
@@ -374,16 +373,16 @@ def _activity(activity: ActivityPlan) -> CppActivity:
 
 
 def _includes(plan: ComponentPlan) -> CppIncludes:
-    system = ['atomic', 'chrono', 'memory', 'mutex', 'string']
+    system = ['memory', 'string']
     ros = ['rclcpp/rclcpp.hpp', 'rclcpp_lifecycle/lifecycle_node.hpp',
            'rclcpp_lifecycle/lifecycle_publisher.hpp']
     if plan.uses_actions:
         ros.append('rclcpp_action/rclcpp_action.hpp')
-    for entity in plan.entities:
-        system += SYSTEM_INCLUDES.get(entity, ())
     if any(p.type.endswith('[]') for p in plan.parameters):
         system.append('vector')
     ros += sorted({header_name(p.type) for p in plan.ports})
+    ros += ['robmosys_runtime/component_node.hpp'] + sorted(
+        {RUNTIME_HEADERS[e] for e in plan.entities if e in RUNTIME_HEADERS})
     return CppIncludes(tuple(sorted(set(system))), tuple(ros))
 
 
@@ -394,12 +393,11 @@ def spell_cpp(component: Component, plan: ComponentPlan) -> CppComponent:
     ports = tuple(_port(p) for p in plan.ports)
     functions = tuple(_function(cls, f) for f in plan.functions)
     activities = tuple(_activity(a) for a in plan.activities)
-    entities = plan.entities
     client_packages = CPP_CLIENT_PACKAGES + (
         ('rclcpp_action',) if plan.uses_actions else ())
     # the parameter descriptors and the lifecycle states are used directly
     interfaces = unique(('rcl_interfaces', 'lifecycle_msgs') + plan.depends)
-    build_depends = client_packages + interfaces
+    build_depends = client_packages + (RUNTIME_PACKAGE,) + interfaces
     src = f'src-gen/{package}'
     return CppComponent(
         banner=banner, package=package, cls=cls, node_cls=plan.node_cls,
@@ -414,16 +412,12 @@ def spell_cpp(component: Component, plan: ComponentPlan) -> CppComponent:
         functions=functions,
         user_functions=tuple(f for f in functions if f.code is None),
         parameters=tuple(_parameter(p) for p in plan.parameters),
-        lifecycle=dict(plan.lifecycle), threads=plan.threads,
+        lifecycle={t: f for t, f in plan.lifecycle if f}, threads=plan.threads,
         has_impl=plan.has_impl,
-        uses_ports_header=any(p.kind.runtime_class for p in plan.ports),
-        query=Entity.CLIENT in entities,
-        action=Entity.ACTION_CLIENT in entities,
-        event=bool({Entity.EVENT_SERVER, Entity.EVENT_CLIENT} & entities),
         find_packages=build_depends,
         link_targets=tuple(f'{p}::{p}' for p in ('rclcpp', 'rclcpp_lifecycle')) +
         (('rclcpp_action::rclcpp_action',) if plan.uses_actions else ()) +
-        ('rclcpp_components::component',),
+        ('rclcpp_components::component', f'{RUNTIME_PACKAGE}::{RUNTIME_PACKAGE}'),
         interface_packages=interfaces,
         sources=(f'{src}/{cls}.cpp',) +
         ((f'src/{package}/{cls}_impl.cpp',) if plan.has_impl else ()) +

@@ -22,45 +22,31 @@ from colcon_robmosys.mapping.portkinds import Entity, Returns
 from colcon_robmosys.mapping.qos import resolve_qos
 from colcon_robmosys.model.types import Component, InterfaceRef, Parameter, QoS
 
-#: entity -> the helper class of the node module it is an instance of
-HELPERS = {
-    Entity.CLIENT: 'QueryClient', Entity.ACTION_CLIENT: 'ActionClientPort',
-    Entity.EVENT_SERVER: 'EventServer', Entity.EVENT_CLIENT: 'EventClient',
-}
-
 _QOS_NAMES = frozenset({'DurabilityPolicy', 'HistoryPolicy', 'LivelinessPolicy',
                         'QoSProfile', 'ReliabilityPolicy'})
-_ACTION_SERVER = frozenset({'ActionServer', 'CancelResponse', 'GoalResponse'})
+
+#: entity -> the method of robmosys_runtime.ComponentNode that creates it
+RUNTIME_METHODS = {
+    Entity.PUBLISHER: 'add_publisher', Entity.SUBSCRIPTION: 'add_subscription',
+    Entity.SERVICE: 'add_service', Entity.CLIENT: 'add_query_client',
+    Entity.ACTION_SERVER: 'add_action_server', Entity.ACTION_CLIENT: 'add_action_client',
+    Entity.EVENT_SERVER: 'add_event_server', Entity.EVENT_CLIENT: 'add_event_client',
+}
 
 #: entity -> module -> the names its code imports (an empty set: the module)
 IMPORTS: dict[Entity, dict[str, frozenset[str]]] = {
     Entity.PUBLISHER: {'rclpy.qos': _QOS_NAMES},
     Entity.SUBSCRIPTION: {'rclpy.qos': _QOS_NAMES},
     Entity.SERVICE: {},
-    Entity.CLIENT: {'time': frozenset(), 'rclpy.task': frozenset({'Future'})},
-    Entity.ACTION_SERVER: {'rclpy.action': _ACTION_SERVER},
-    Entity.ACTION_CLIENT: {
-        'time': frozenset(), 'rclpy.task': frozenset({'Future'}),
-        'rclpy.action': frozenset({'ActionClient'})},
-    Entity.EVENT_SERVER: {
-        'rclpy.qos': _QOS_NAMES, 'time': frozenset(),
-        'rclpy.task': frozenset({'Future'}), 'rclpy.action': _ACTION_SERVER},
-    Entity.EVENT_CLIENT: {
-        'rclpy.qos': _QOS_NAMES, 'time': frozenset(),
-        'rclpy.task': frozenset({'Future'}),
-        'rclpy.action': frozenset({'ActionClient'}),
-        'action_msgs.msg': frozenset({'GoalStatus'})},
+    Entity.CLIENT: {},
+    Entity.ACTION_SERVER: {},
+    Entity.ACTION_CLIENT: {},
+    Entity.EVENT_SERVER: {'rclpy.qos': _QOS_NAMES},
+    Entity.EVENT_CLIENT: {'rclpy.qos': _QOS_NAMES},
 }
 
-#: entity -> the node method that destroys it (others have a destroy())
-DESTROY = {
-    Entity.PUBLISHER: 'destroy_lifecycle_publisher',
-    Entity.SUBSCRIPTION: 'destroy_subscription',
-    Entity.SERVICE: 'destroy_service',
-}
-
-#: entity -> packages its code needs at run time
-EXEC_DEPENDS = {Entity.EVENT_CLIENT: ('action_msgs',)}
+#: packages the code of every component needs at run time
+EXEC_DEPENDS = ('rclpy', 'lifecycle_msgs', 'rcl_interfaces', 'robmosys_runtime')
 
 #: what a function gives back -> its annotation
 RETURN_TYPES = {
@@ -82,6 +68,9 @@ PARAMETER_TYPES = {
 #: Modules of the Python standard library the generated code imports.
 STDLIB = frozenset({'os', 'sys', 'threading', 'time', 'traceback'})
 
+#: the longest line a list of methods is written on (ament_flake8: 99)
+_LINE = 99
+
 
 @dataclass(frozen=True)
 class PyPort:
@@ -96,10 +85,11 @@ class PyPort:
     qos: str | None
     qos_const: str
     activity: str | None
-    callback: str
     functions: tuple[str, ...]
-    #: the node method that destroys it, if it has no destroy() of its own
-    destroy: str | None
+    #: the ComponentNode method that creates it
+    method: str
+    #: what its activity runs: a method, or a list of them
+    run: str
 
 
 @dataclass(frozen=True)
@@ -147,6 +137,17 @@ class PyActivity:
     period: float | None
     functions: tuple[str, ...]
     description: str
+    #: the list of methods it runs
+    run: str
+
+
+@dataclass(frozen=True)
+class PyTransition:
+    """A lifecycle transition that runs functions of the model."""
+
+    transition: str
+    #: the list of methods it runs
+    run: str
 
 
 @dataclass(frozen=True)
@@ -166,18 +167,21 @@ class PyComponent:
     #: the periodic activities
     activities: tuple[PyActivity, ...]
     activity_names: tuple[str, ...]
-    #: the helper classes the node module defines
-    helpers: tuple[str, ...]
     functions: tuple[PyFunction, ...]
     user_functions: tuple[PyFunction, ...]
     parameters: tuple[PyParameter, ...]
-    lifecycle: Mapping[str, tuple[str, ...]]
+    lifecycle: tuple[PyTransition, ...]
     has_impl: bool
     #: packages it builds against (its interfaces), and runs with
     depends: tuple[str, ...]
     exec_depends: tuple[str, ...]
     package_xml: PackageXml
     skeleton: bool = False
+
+    @property
+    def port_names(self) -> list[str]:
+        """Return the names of the ports (attributes of the node)."""
+        return [p.name for p in self.ports]
 
     @property
     def impl_path(self) -> str:
@@ -215,13 +219,8 @@ def _add(modules: dict[str, set[str]], module: str, names: frozenset[str] | set[
 
 def _node_imports(names: dict[InterfaceRef, str], plan: ComponentPlan,
                   uses_duration: bool) -> tuple[str, ...]:
-    modules: dict[str, set[str]] = {
-        'rclpy.lifecycle': {'LifecycleNode', 'LifecycleState',
-                            'TransitionCallbackReturn'},
-    }
-    if plan.ports or plan.activities or plan.lifecycle:
-        # every piece of user code runs in a try that logs the traceback
-        modules['traceback'] = set()
+    # the lifecycle bookkeeping is the runtime's ComponentNode
+    modules: dict[str, set[str]] = {'robmosys_runtime': {'ComponentNode'}}
     for ref, local in names.items():
         alias = '' if local == ref.name else f' as {local}'
         _add(modules, f'{ref.package}.{ref.kind.value}', {f'{ref.name}{alias}'})
@@ -232,16 +231,25 @@ def _node_imports(names: dict[InterfaceRef, str], plan: ComponentPlan,
                 _add(modules, 'rcl_interfaces.msg', {
                     'IntegerRange' if parameter.type == 'int'
                     else 'FloatingPointRange'})
-    if plan.activities or any(p.kind.runtime_class for p in plan.ports):
-        # a callback group and a lock per activity, and in the port helpers
-        modules['rclpy.callback_groups'] = {'MutuallyExclusiveCallbackGroup'}
-        modules['threading'] = set()
     for entity in plan.entities:
         for module, imported in IMPORTS[entity].items():
             _add(modules, module, imported)
     if uses_duration:
         modules['rclpy.duration'] = {'Duration'}
     return import_lines(modules)
+
+
+def methods(names: tuple[str, ...], indent: int, prefix: int = 0) -> str:
+    """Write the list of the methods ``self.<name>``, one a line if it is long.
+
+    The list starts after ``indent`` spaces and ``prefix`` more characters,
+    and is followed by two (a parenthesis or a comma, and another).
+    """
+    text = '[' + ', '.join(f'self.{n}' for n in names) + ']'
+    if indent + prefix + len(text) + 2 <= _LINE:
+        return text
+    pad = ' ' * (indent + 4)
+    return '[\n' + ''.join(f'{pad}self.{n},\n' for n in names) + ' ' * indent + ']'
 
 
 def _python_names(refs: list[InterfaceRef]) -> dict[InterfaceRef, str]:
@@ -308,14 +316,17 @@ def _class_doc(cls: str, description: str) -> str:
 
 
 def _port(port: PortPlan, type_name: str) -> PyPort:
+    # a port whose activity has one function (the one that answers) hands
+    # over that method, others the list of the activity's methods
+    run = f'self.{port.functions[0]}' if port.kind.one_function and port.functions \
+        else methods(port.functions, 12, len(repr(port.activity)) + 2)
     return PyPort(
         name=port.name, description=port.description, entity=port.entity,
         type=type_name, type_full=str(port.type),
         # query and action ports use the QoS of services and actions
         qos=qos_expression(port.qos) if port.kind.topic_qos else None,
         qos_const=f'QOS_{port.name.upper()}', activity=port.activity,
-        callback=f'_on_{port.name}', functions=port.functions,
-        destroy=DESTROY.get(port.kind.entity))
+        functions=port.functions, method=RUNTIME_METHODS[port.kind.entity], run=run)
 
 
 def _range(parameter: Parameter) -> PyRange | None:
@@ -379,9 +390,7 @@ def spell_python(component: Component, plan: ComponentPlan) -> PyComponent:
             alias = '' if local == ref.name else f' as {local}'
             _add(impl_modules, f'{ref.package}.{ref.kind.value}',
                  {f'{ref.name}{alias}'})
-    exec_depends = ('rclpy', 'lifecycle_msgs', 'rcl_interfaces') + tuple(
-        d for p in plan.ports for d in EXEC_DEPENDS.get(p.kind.entity, ())
-    ) + plan.depends
+    exec_depends = EXEC_DEPENDS + plan.depends
     banner = banner_of(component)
     return PyComponent(
         banner=banner, package=package, cls=cls, node_cls=plan.node_cls,
@@ -389,19 +398,20 @@ def spell_python(component: Component, plan: ComponentPlan) -> PyComponent:
         description=_class_doc(cls, plan.description),
         node_imports=_node_imports(type_names, plan, uses_duration),
         main_imports=import_lines({
-            'os': set(), 'rclpy': set(),
-            'rclpy.executors': {'ExternalShutdownException',
-                                'MultiThreadedExecutor'},
+            'robmosys_runtime': {'run'},
             f'{package}.{node_module}': {plan.node_cls}}),
         impl_imports=import_lines(impl_modules),
         ports=ports,
-        activities=tuple(PyActivity(a.name, a.period, a.functions, a.description)
+        activities=tuple(PyActivity(
+            a.name, a.period, a.functions, a.description,
+            methods(a.functions, 8, len(f'self.add_periodic({a.name!r}, {a.period}, ')))
                          for a in plan.activities if a.period is not None),
         activity_names=tuple(a.name for a in plan.activities),
-        helpers=tuple(sorted({HELPERS[e] for e in plan.entities if e in HELPERS})),
         functions=functions, user_functions=user_functions,
         parameters=tuple(_parameter(p) for p in plan.parameters),
-        lifecycle=dict(plan.lifecycle), has_impl=plan.has_impl,
+        lifecycle=tuple(PyTransition(t, methods(tuple(f), 16, len(repr(t)) + 2))
+                        for t, f in plan.lifecycle if f),
+        has_impl=plan.has_impl,
         depends=plan.depends, exec_depends=exec_depends,
         package_xml=package_xml(
             banner, component.info,

@@ -34,8 +34,9 @@ final override import module NULL
 
 PYTHON_KEYWORDS = frozenset(keyword.kwlist) | frozenset(keyword.softkwlist)
 
-#: Members of rclpy's and rclcpp_lifecycle's LifecycleNode (and names the
-#: generated classes use): a function of that name would replace them.
+#: Members of rclpy's and rclcpp_lifecycle's LifecycleNode, of robmosys_runtime's
+#: ComponentNode (both languages), and names the generated classes use: a
+#: function or port of that name would replace them.
 NODE_MEMBERS = frozenset("""
 add_managed_entity add_on_set_parameters_callback
 add_post_set_parameters_callback add_pre_set_parameters_callback add_waitable
@@ -59,6 +60,11 @@ trigger_activate trigger_cleanup trigger_configure trigger_deactivate
 trigger_shutdown undeclare_parameter wait_for_node waitables now configure
 activate deactivate cleanup shutdown get_current_state
 params ports main
+active activities activity add_action_client add_action_server add_activity
+add_event_client add_event_server add_periodic add_publisher add_query_client
+add_service add_subscription create_action_server create_ports
+create_query_server in_activity is_active keep keep_publisher own_group release
+run_activity_callback set_lifecycle
 """.split())
 
 

@@ -5,13 +5,9 @@
 
 #include "all_ports/Everything.hpp"
 
-#include <algorithm>
 #include <chrono>
-#include <exception>
-#include <future>
 #include <memory>
 #include <string>
-#include <vector>
 
 namespace all_ports
 {
@@ -164,7 +160,7 @@ Everything::Everything(const rclcpp::NodeOptions & options)
 Everything::Everything(
   const std::string & node_name,
   const rclcpp::NodeOptions & options)
-: rclcpp_lifecycle::LifecycleNode(node_name, options),
+: robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
   {
@@ -257,25 +253,31 @@ Everything::Everything(
     std::vector<std::string> default_value;
     declare_parameter<std::vector<std::string>>("empty", default_value, descriptor);
   }
-  cbg_Periodic_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_OnTick_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_Serve_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_Answer_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_Exec_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_Result_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_Condition_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_OnLevel_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_qAsk_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_qPlain_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_aUse_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_aPlain_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_eWatch_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_eQuiet_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  add_activity("Periodic");
+  add_activity("OnTick");
+  add_activity("Serve");
+  add_activity("Answer");
+  add_activity("Exec");
+  add_activity("Result");
+  add_activity("Condition");
+  add_activity("OnLevel");
+  set_lifecycle(
+    "on_configure", [this]() {
+      fSetUp();
+    });
+  set_lifecycle(
+    "on_cleanup", [this]() {
+      fTearDown();
+    });
+  set_lifecycle(
+    "on_shutdown", [this]() {
+      fTearDown();
+    });
 }
 
 Everything::~Everything()
 {
-  release_();
+  release();
 }
 
 const Everything::Parameters & Everything::params() const
@@ -283,310 +285,94 @@ const Everything::Parameters & Everything::params() const
   return params_;
 }
 
-bool Everything::is_active() const
+void Everything::create_ports()
 {
-  return active_.load();
-}
-
-Everything::CallbackReturn Everything::on_configure(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    pTick = create_publisher<all_ports_msgs::msg::Tick>(
-      "pTick", qos_pTick());
-    rclcpp::SubscriptionOptions rTick_options;
-    rTick_options.callback_group = cbg_OnTick_;
-    rTick = create_subscription<all_ports_msgs::msg::Tick>(
-      "rTick", qos_rTick(),
-      [this](const all_ports_msgs::msg::Tick & commobj) {
-        if (!active_.load()) {
-          return;
-        }
-        try {
-          fOnTick(commobj);
-        } catch (const std::exception & error) {
-          RCLCPP_ERROR(get_logger(), "activity OnTick failed: %s", error.what());
-        }
-      }, rTick_options);
-    // no activity is triggered by this port: it receives and drops
-    rQuiet = create_subscription<all_ports_msgs::msg::Tick>(
-      "rQuiet", qos_rQuiet(), [](const all_ports_msgs::msg::Tick &) {});
-    qTwice = create_service<all_ports_msgs::srv::Twice>(
-      "qTwice",
+  keep_publisher(
+    pTick, create_publisher<all_ports_msgs::msg::Tick>(
+      "pTick", qos_pTick()));
+  {
+    rclcpp::SubscriptionOptions options;
+    options.callback_group = activity("OnTick");
+    keep(
+      rTick, create_subscription<all_ports_msgs::msg::Tick>(
+        "rTick", qos_rTick(),
+        in_activity<const all_ports_msgs::msg::Tick &>(
+          "OnTick", [this](const all_ports_msgs::msg::Tick & commobj) {
+            fOnTick(commobj);
+          }), options));
+  }
+  // no activity is triggered by this port: it receives and drops
+  keep(
+    rQuiet, create_subscription<all_ports_msgs::msg::Tick>(
+      "rQuiet", qos_rQuiet(), [](const all_ports_msgs::msg::Tick &) {}));
+  keep(
+    qTwice, create_query_server<all_ports_msgs::srv::Twice>(
+      "qTwice", "Serve",
       [this](
-        const std::shared_ptr<all_ports_msgs::srv::Twice::Request> request,
-        std::shared_ptr<all_ports_msgs::srv::Twice::Response> response) {
-        if (!active_.load()) {
-          RCLCPP_WARN(
-            get_logger(), "query on the port qTwice while inactive: "
-            "answering with the default response");
-          return;
-        }
-        try {
-          fTwice(*request, *response);
-        } catch (const std::exception & error) {
-          RCLCPP_ERROR(get_logger(), "activity Serve failed: %s", error.what());
-        }
-      }, rclcpp::ServicesQoS(), cbg_Serve_);
-    qAsk = std::make_shared<ports::QueryClient<all_ports_msgs::srv::Twice>>(
-      create_client<all_ports_msgs::srv::Twice>("qAsk", rclcpp::ServicesQoS(), cbg_qAsk_),
-      [this](const all_ports_msgs::srv::Twice::Response & commobj) {
-        if (!active_.load()) {
-          return;
-        }
-        try {
+        const all_ports_msgs::srv::Twice::Request & request,
+        all_ports_msgs::srv::Twice::Response & response) {
+        fTwice(request, response);
+      }));
+  keep(
+    qAsk, std::make_shared<ports::QueryClient<all_ports_msgs::srv::Twice>>(
+      create_client<all_ports_msgs::srv::Twice>(
+        "qAsk", rclcpp::ServicesQoS(), own_group("qAsk")),
+      in_activity<const all_ports_msgs::srv::Twice::Response &>(
+        "Answer", [this](const all_ports_msgs::srv::Twice::Response & commobj) {
           fAnswer(commobj);
-        } catch (const std::exception & error) {
-          RCLCPP_ERROR(get_logger(), "activity Answer failed: %s", error.what());
-        }
-      });
-    qPlain = std::make_shared<ports::QueryClient<all_ports_msgs::srv::Twice>>(
-      create_client<all_ports_msgs::srv::Twice>("qPlain", rclcpp::ServicesQoS(), cbg_qPlain_),
-      [](const all_ports_msgs::srv::Twice::Response & commobj) {
-        static_cast<void>(commobj);
-      });
-    aCount = rclcpp_action::create_server<all_ports_msgs::action::Count>(
-      this, "aCount",
-      [this](
-        const rclcpp_action::GoalUUID &,
-        std::shared_ptr<const all_ports_msgs::action::Count::Goal>) {
-        if (!active_.load()) {
-          RCLCPP_WARN(get_logger(), "goal on the port aCount rejected: the node is inactive");
-          return rclcpp_action::GoalResponse::REJECT;
-        }
-        return rclcpp_action::GoalResponse::ACCEPT_AND_EXECUTE;
-      },
-      [](const std::shared_ptr<GoalHandle_aCount>) {
-        return rclcpp_action::CancelResponse::ACCEPT;
-      },
+        })));
+  keep(
+    qPlain, std::make_shared<ports::QueryClient<all_ports_msgs::srv::Twice>>(
+      create_client<all_ports_msgs::srv::Twice>(
+        "qPlain", rclcpp::ServicesQoS(), own_group("qPlain")),
+      nullptr));
+  keep(
+    aCount, create_action_server<all_ports_msgs::action::Count>(
+      "aCount", "Exec",
       [this](const std::shared_ptr<GoalHandle_aCount> goal_handle) {
-        // executing may take long: a thread of its own keeps the server answering
-        std::lock_guard<std::mutex> lock(goals_mutex_);
-        forget_finished_goals_();
-        goals_.push_back(
-          std::async(
-            std::launch::async, &Everything::execute_aCount_, this, goal_handle));
-      }, rcl_action_server_get_default_options(), cbg_Exec_);
-    aUse = std::make_shared<ports::ActionClient<all_ports_msgs::action::Count>>(
-      rclcpp_action::create_client<all_ports_msgs::action::Count>(this, "aUse", cbg_aUse_),
-      "aUse",
-      [this](const all_ports_msgs::action::Count::Result & commobj) {
-        if (!active_.load()) {
-          return;
-        }
-        try {
+        return fCount(goal_handle);
+      }));
+  keep(
+    aUse, std::make_shared<ports::ActionClient<all_ports_msgs::action::Count>>(
+      rclcpp_action::create_client<all_ports_msgs::action::Count>(
+        this, "aUse", own_group("aUse")),
+      "aUse", in_activity<const all_ports_msgs::action::Count::Result &>(
+        "Result", [this](const all_ports_msgs::action::Count::Result & commobj) {
           fResult(commobj);
-        } catch (const std::exception & error) {
-          RCLCPP_ERROR(get_logger(), "activity Result failed: %s", error.what());
-        }
-      });
-    aPlain = std::make_shared<ports::ActionClient<all_ports_msgs::action::Count>>(
-      rclcpp_action::create_client<all_ports_msgs::action::Count>(this, "aPlain", cbg_aPlain_),
-      "aPlain",
-      [](const all_ports_msgs::action::Count::Result & commobj) {
-        static_cast<void>(commobj);
-      });
-    eLevel = std::make_shared<ports::EventServer<all_ports_msgs::action::Level>>(
-      this, "eLevel", qos_eLevel(), [this]() {return active_.load();},
+        })));
+  keep(
+    aPlain, std::make_shared<ports::ActionClient<all_ports_msgs::action::Count>>(
+      rclcpp_action::create_client<all_ports_msgs::action::Count>(
+        this, "aPlain", own_group("aPlain")),
+      "aPlain", nullptr));
+  keep(
+    eLevel, std::make_shared<ports::EventServer<all_ports_msgs::action::Level>>(
+      this, "eLevel", qos_eLevel(), [this]() {return is_active();},
       [this](
         const all_ports_msgs::action::Level::Goal & activation,
         const all_ports_msgs::action::Level::Feedback & event) {
         return fAbove(activation, event);
-      }, cbg_Condition_);
-    eAll = std::make_shared<ports::EventServer<all_ports_msgs::action::Level>>(
-      this, "eAll", qos_eAll(), [this]() {return active_.load();},
-      nullptr, nullptr);
-    eWatch = std::make_shared<ports::EventClient<all_ports_msgs::action::Level>>(
+      }, activity("Condition")));
+  keep(
+    eAll, std::make_shared<ports::EventServer<all_ports_msgs::action::Level>>(
+      this, "eAll", qos_eAll(), [this]() {return is_active();},
+      nullptr, nullptr));
+  keep(
+    eWatch, std::make_shared<ports::EventClient<all_ports_msgs::action::Level>>(
       this, "eWatch", qos_eWatch(),
-      [this](const all_ports_msgs::action::Level::Feedback & commobj) {
-        if (!active_.load()) {
-          return;
-        }
-        try {
+      in_activity<const all_ports_msgs::action::Level::Feedback &>(
+        "OnLevel", [this](const all_ports_msgs::action::Level::Feedback & commobj) {
           fOnLevel(commobj);
-        } catch (const std::exception & error) {
-          RCLCPP_ERROR(get_logger(), "activity OnLevel failed: %s", error.what());
-        }
-      }, cbg_eWatch_);
-    eQuiet = std::make_shared<ports::EventClient<all_ports_msgs::action::Level>>(
+        }), own_group("eWatch")));
+  keep(
+    eQuiet, std::make_shared<ports::EventClient<all_ports_msgs::action::Level>>(
       this, "eQuiet", qos_eQuiet(),
-      [](const all_ports_msgs::action::Level::Feedback & commobj) {
-        static_cast<void>(commobj);
-      }, cbg_eQuiet_);
-    // created cancelled: the activity starts on activate
-    timer_Periodic_ = create_wall_timer(
-      std::chrono::nanoseconds(250000000), [this]() {run_Periodic_();},
-      cbg_Periodic_);
-    timer_Periodic_->cancel();
-    fSetUp();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "configure failed: %s", error.what());
-    release_();
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "configure failed: unknown exception");
-    release_();
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Everything::CallbackReturn Everything::on_activate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    pTick->on_activate();
-    active_.store(true);
-    timer_Periodic_->reset();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "activate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Everything::CallbackReturn Everything::on_deactivate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  try {
-    timer_Periodic_->cancel();
-    pTick->on_deactivate();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Everything::CallbackReturn Everything::on_cleanup(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    fTearDown();
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-Everything::CallbackReturn Everything::on_shutdown(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    fTearDown();
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-Everything::CallbackReturn Everything::on_error(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-void Everything::release_()
-{
-  if (timer_Periodic_) {
-    timer_Periodic_->cancel();
-    timer_Periodic_.reset();
-  }
-  // wait for the goals being executed (their functions can check is_active())
-  std::vector<std::future<void>> goals;
-  {
-    std::lock_guard<std::mutex> lock(goals_mutex_);
-    goals.swap(goals_);
-  }
-  for (std::future<void> & goal : goals) {
-    goal.wait();
-  }
-  pTick.reset();
-  rTick.reset();
-  rQuiet.reset();
-  qTwice.reset();
-  qAsk.reset();
-  qPlain.reset();
-  aCount.reset();
-  aUse.reset();
-  aPlain.reset();
-  eLevel.reset();
-  eAll.reset();
-  eWatch.reset();
-  eQuiet.reset();
-}
-
-void Everything::run_Periodic_()
-{
-  if (!active_.load()) {
-    return;
-  }
-  try {
-    fTick();
-    fUse();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activity Periodic failed: %s", error.what());
-  }
-}
-
-void Everything::forget_finished_goals_()
-{
-  goals_.erase(
-    std::remove_if(
-      goals_.begin(), goals_.end(), [](const std::future<void> & goal) {
-        return goal.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
-      }), goals_.end());
-}
-
-void Everything::execute_aCount_(
-  const std::shared_ptr<GoalHandle_aCount> goal_handle)
-{
-  std::lock_guard<std::mutex> lock(execute_aCount_mutex_);
-  auto result = std::make_shared<all_ports_msgs::action::Count::Result>();
-  try {
-    *result = fCount(goal_handle);
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activity Exec failed: %s", error.what());
-    goal_handle->abort(result);
-    return;
-  }
-  if (goal_handle->is_canceling()) {
-    goal_handle->canceled(result);
-  } else {
-    goal_handle->succeed(result);
-  }
+      nullptr, own_group("eQuiet")));
+  add_periodic(
+    "Periodic", std::chrono::nanoseconds(250000000), [this]() {
+      fTick();
+      fUse();
+    });
 }
 
 void Everything::fTick()

@@ -5,11 +5,7 @@
 
 #pragma once
 
-#include <atomic>
-#include <chrono>
-#include <future>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -21,20 +17,23 @@
 #include "all_ports_msgs/action/level.hpp"
 #include "all_ports_msgs/msg/tick.hpp"
 #include "all_ports_msgs/srv/twice.hpp"
-
-#include "all_ports/ports.hpp"
+#include "robmosys_runtime/component_node.hpp"
+#include "robmosys_runtime/action_client.hpp"
+#include "robmosys_runtime/event_client.hpp"
+#include "robmosys_runtime/event_server.hpp"
+#include "robmosys_runtime/query_client.hpp"
 
 namespace all_ports
 {
 
+/// The classes of the ports (robmosys_runtime), as the component names them.
+namespace ports = robmosys_runtime;
+
 /// Every port: "quoted" ??= text
 /// and a backslash \.
-class Everything : public rclcpp_lifecycle::LifecycleNode
+class Everything : public robmosys_runtime::ComponentNode
 {
 public:
-  using CallbackReturn =
-    rclcpp_lifecycle::node_interfaces::LifecycleNodeInterface::CallbackReturn;
-
   /// Typed access to the current parameter values of Everything.
   class Parameters
   {
@@ -86,20 +85,13 @@ private:
   /// Return the parameters of the node.
   const Parameters & params() const;
 
-  /// Return whether the node is active (activities run only then).
-  bool is_active() const;
-
 protected:
   /// The goals of the port aCount.
   using GoalHandle_aCount =
     rclcpp_action::ServerGoalHandle<all_ports_msgs::action::Count>;
 
-  CallbackReturn on_configure(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_activate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_deactivate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_cleanup(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_shutdown(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_error(const rclcpp_lifecycle::State & state) override;
+  /// Create the ports, and the timers of the periodic activities (on configure).
+  void create_ports() override;
 
   /// The function fTick of the model.
   virtual void fTick();
@@ -179,37 +171,7 @@ protected:
   std::shared_ptr<ports::EventClient<all_ports_msgs::action::Level>> eQuiet;
 
 private:
-  /// Destroy the ports and timers created on configure.
-  void release_();
-  /// Run the periodic activity Periodic.
-  void run_Periodic_();
-  /// Drop the goals whose execution ended (goals_mutex_ held).
-  void forget_finished_goals_();
-  /// Execute a goal of the port aCount, in a thread of its own.
-  void execute_aCount_(const std::shared_ptr<GoalHandle_aCount> goal_handle);
-
   Parameters params_;
-  std::atomic<bool> active_{false};
-  rclcpp::CallbackGroup::SharedPtr cbg_Periodic_;
-  rclcpp::CallbackGroup::SharedPtr cbg_OnTick_;
-  rclcpp::CallbackGroup::SharedPtr cbg_Serve_;
-  rclcpp::CallbackGroup::SharedPtr cbg_Answer_;
-  rclcpp::CallbackGroup::SharedPtr cbg_Exec_;
-  rclcpp::CallbackGroup::SharedPtr cbg_Result_;
-  rclcpp::CallbackGroup::SharedPtr cbg_Condition_;
-  rclcpp::CallbackGroup::SharedPtr cbg_OnLevel_;
-  rclcpp::CallbackGroup::SharedPtr cbg_qAsk_;
-  rclcpp::CallbackGroup::SharedPtr cbg_qPlain_;
-  rclcpp::CallbackGroup::SharedPtr cbg_aUse_;
-  rclcpp::CallbackGroup::SharedPtr cbg_aPlain_;
-  rclcpp::CallbackGroup::SharedPtr cbg_eWatch_;
-  rclcpp::CallbackGroup::SharedPtr cbg_eQuiet_;
-  rclcpp::TimerBase::SharedPtr timer_Periodic_;
-  /// Serialises the goals of each action server port, as its activity's group would.
-  std::mutex execute_aCount_mutex_;
-  /// The goals being executed, each in a thread of its own; waited for on cleanup.
-  std::mutex goals_mutex_;
-  std::vector<std::future<void>> goals_;
 };
 
 }  // namespace all_ports

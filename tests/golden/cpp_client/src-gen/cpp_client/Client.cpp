@@ -5,7 +5,7 @@
 
 #include "cpp_client/Client.hpp"
 
-#include <exception>
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -25,17 +25,20 @@ Client::Client(const rclcpp::NodeOptions & options)
 Client::Client(
   const std::string & node_name,
   const rclcpp::NodeOptions & options)
-: rclcpp_lifecycle::LifecycleNode(node_name, options),
+: robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
-  cbg_Ask_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_OnAnswer_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_qAdd_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  add_activity("Ask");
+  add_activity("OnAnswer");
+  set_lifecycle(
+    "on_configure", [this]() {
+      fReset();
+    });
 }
 
 Client::~Client()
 {
-  release_();
+  release();
 }
 
 const Client::Parameters & Client::params() const
@@ -43,147 +46,20 @@ const Client::Parameters & Client::params() const
   return params_;
 }
 
-bool Client::is_active() const
+void Client::create_ports()
 {
-  return active_.load();
-}
-
-Client::CallbackReturn Client::on_configure(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    qAdd = std::make_shared<ports::QueryClient<example_msgs::srv::AddTwoInts>>(
-      create_client<example_msgs::srv::AddTwoInts>("qAdd", rclcpp::ServicesQoS(), cbg_qAdd_),
-      [this](const example_msgs::srv::AddTwoInts::Response & commobj) {
-        if (!active_.load()) {
-          return;
-        }
-        try {
+  keep(
+    qAdd, std::make_shared<ports::QueryClient<example_msgs::srv::AddTwoInts>>(
+      create_client<example_msgs::srv::AddTwoInts>(
+        "qAdd", rclcpp::ServicesQoS(), own_group("qAdd")),
+      in_activity<const example_msgs::srv::AddTwoInts::Response &>(
+        "OnAnswer", [this](const example_msgs::srv::AddTwoInts::Response & commobj) {
           fAnswer(commobj);
-        } catch (const std::exception & error) {
-          RCLCPP_ERROR(get_logger(), "activity OnAnswer failed: %s", error.what());
-        }
-      });
-    // created cancelled: the activity starts on activate
-    timer_Ask_ = create_wall_timer(
-      std::chrono::nanoseconds(300000000), [this]() {run_Ask_();},
-      cbg_Ask_);
-    timer_Ask_->cancel();
-    fReset();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "configure failed: %s", error.what());
-    release_();
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "configure failed: unknown exception");
-    release_();
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Client::CallbackReturn Client::on_activate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    active_.store(true);
-    timer_Ask_->reset();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "activate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Client::CallbackReturn Client::on_deactivate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  try {
-    timer_Ask_->cancel();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Client::CallbackReturn Client::on_cleanup(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-Client::CallbackReturn Client::on_shutdown(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-Client::CallbackReturn Client::on_error(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-void Client::release_()
-{
-  if (timer_Ask_) {
-    timer_Ask_->cancel();
-    timer_Ask_.reset();
-  }
-  qAdd.reset();
-}
-
-void Client::run_Ask_()
-{
-  if (!active_.load()) {
-    return;
-  }
-  try {
-    fAsk();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activity Ask failed: %s", error.what());
-  }
+        })));
+  add_periodic(
+    "Ask", std::chrono::nanoseconds(300000000), [this]() {
+      fAsk();
+    });
 }
 
 void Client::fAnswer(const example_msgs::srv::AddTwoInts::Response & commobj)

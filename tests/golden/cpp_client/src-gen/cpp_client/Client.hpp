@@ -5,29 +5,26 @@
 
 #pragma once
 
-#include <atomic>
-#include <chrono>
 #include <memory>
-#include <mutex>
 #include <string>
 
 #include "rclcpp/rclcpp.hpp"
 #include "rclcpp_lifecycle/lifecycle_node.hpp"
 #include "rclcpp_lifecycle/lifecycle_publisher.hpp"
 #include "example_msgs/srv/add_two_ints.hpp"
-
-#include "cpp_client/ports.hpp"
+#include "robmosys_runtime/component_node.hpp"
+#include "robmosys_runtime/query_client.hpp"
 
 namespace cpp_client
 {
 
+/// The classes of the ports (robmosys_runtime), as the component names them.
+namespace ports = robmosys_runtime;
+
 /// Asks for sums, blocking and asynchronously (the C++ twin of add_client).
-class Client : public rclcpp_lifecycle::LifecycleNode
+class Client : public robmosys_runtime::ComponentNode
 {
 public:
-  using CallbackReturn =
-    rclcpp_lifecycle::node_interfaces::LifecycleNodeInterface::CallbackReturn;
-
   /// Typed access to the current parameter values of Client.
   class Parameters
   {
@@ -49,16 +46,9 @@ private:
   /// Return the parameters of the node.
   const Parameters & params() const;
 
-  /// Return whether the node is active (activities run only then).
-  bool is_active() const;
-
 protected:
-  CallbackReturn on_configure(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_activate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_deactivate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_cleanup(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_shutdown(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_error(const rclcpp_lifecycle::State & state) override;
+  /// Create the ports, and the timers of the periodic activities (on configure).
+  void create_ports() override;
 
   /// Ask n + 1000 and wait for the answer, then n + 2000 without waiting.
   virtual void fAsk() = 0;
@@ -73,17 +63,7 @@ protected:
   std::shared_ptr<ports::QueryClient<example_msgs::srv::AddTwoInts>> qAdd;
 
 private:
-  /// Destroy the ports and timers created on configure.
-  void release_();
-  /// Run the periodic activity Ask.
-  void run_Ask_();
-
   Parameters params_;
-  std::atomic<bool> active_{false};
-  rclcpp::CallbackGroup::SharedPtr cbg_Ask_;
-  rclcpp::CallbackGroup::SharedPtr cbg_OnAnswer_;
-  rclcpp::CallbackGroup::SharedPtr cbg_qAdd_;
-  rclcpp::TimerBase::SharedPtr timer_Ask_;
 };
 
 }  // namespace cpp_client

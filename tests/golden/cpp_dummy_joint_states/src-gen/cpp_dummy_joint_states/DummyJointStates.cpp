@@ -5,7 +5,7 @@
 
 #include "cpp_dummy_joint_states/DummyJointStates.hpp"
 
-#include <exception>
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -51,7 +51,7 @@ DummyJointStates::DummyJointStates(const rclcpp::NodeOptions & options)
 DummyJointStates::DummyJointStates(
   const std::string & node_name,
   const rclcpp::NodeOptions & options)
-: rclcpp_lifecycle::LifecycleNode(node_name, options),
+: robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
   {
@@ -75,12 +75,16 @@ DummyJointStates::DummyJointStates(
     const double default_value = 0.05;
     declare_parameter<double>("speed", default_value, descriptor);
   }
-  cbg_Publish_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  add_activity("Publish");
+  set_lifecycle(
+    "on_configure", [this]() {
+      fInit();
+    });
 }
 
 DummyJointStates::~DummyJointStates()
 {
-  release_();
+  release();
 }
 
 const DummyJointStates::Parameters & DummyJointStates::params() const
@@ -88,139 +92,15 @@ const DummyJointStates::Parameters & DummyJointStates::params() const
   return params_;
 }
 
-bool DummyJointStates::is_active() const
+void DummyJointStates::create_ports()
 {
-  return active_.load();
-}
-
-DummyJointStates::CallbackReturn DummyJointStates::on_configure(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    joint_states = create_publisher<sensor_msgs::msg::JointState>(
-      "joint_states", qos_joint_states());
-    // created cancelled: the activity starts on activate
-    timer_Publish_ = create_wall_timer(
-      std::chrono::nanoseconds(100000000), [this]() {run_Publish_();},
-      cbg_Publish_);
-    timer_Publish_->cancel();
-    fInit();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "configure failed: %s", error.what());
-    release_();
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "configure failed: unknown exception");
-    release_();
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-DummyJointStates::CallbackReturn DummyJointStates::on_activate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    joint_states->on_activate();
-    active_.store(true);
-    timer_Publish_->reset();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "activate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-DummyJointStates::CallbackReturn DummyJointStates::on_deactivate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  try {
-    timer_Publish_->cancel();
-    joint_states->on_deactivate();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-DummyJointStates::CallbackReturn DummyJointStates::on_cleanup(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-DummyJointStates::CallbackReturn DummyJointStates::on_shutdown(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-DummyJointStates::CallbackReturn DummyJointStates::on_error(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-void DummyJointStates::release_()
-{
-  if (timer_Publish_) {
-    timer_Publish_->cancel();
-    timer_Publish_.reset();
-  }
-  joint_states.reset();
-}
-
-void DummyJointStates::run_Publish_()
-{
-  if (!active_.load()) {
-    return;
-  }
-  try {
-    fPublish();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activity Publish failed: %s", error.what());
-  }
+  keep_publisher(
+    joint_states, create_publisher<sensor_msgs::msg::JointState>(
+      "joint_states", qos_joint_states()));
+  add_periodic(
+    "Publish", std::chrono::nanoseconds(100000000), [this]() {
+      fPublish();
+    });
 }
 
 }  // namespace cpp_dummy_joint_states

@@ -5,7 +5,7 @@
 
 #include "cpp_dummy_laser/DummyLaser.hpp"
 
-#include <exception>
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -56,7 +56,7 @@ DummyLaser::DummyLaser(const rclcpp::NodeOptions & options)
 DummyLaser::DummyLaser(
   const std::string & node_name,
   const rclcpp::NodeOptions & options)
-: rclcpp_lifecycle::LifecycleNode(node_name, options),
+: robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
   {
@@ -91,12 +91,16 @@ DummyLaser::DummyLaser(
     const double default_value = 10.0;
     declare_parameter<double>("range_max", default_value, descriptor);
   }
-  cbg_Scan_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  add_activity("Scan");
+  set_lifecycle(
+    "on_configure", [this]() {
+      fInit();
+    });
 }
 
 DummyLaser::~DummyLaser()
 {
-  release_();
+  release();
 }
 
 const DummyLaser::Parameters & DummyLaser::params() const
@@ -104,139 +108,15 @@ const DummyLaser::Parameters & DummyLaser::params() const
   return params_;
 }
 
-bool DummyLaser::is_active() const
+void DummyLaser::create_ports()
 {
-  return active_.load();
-}
-
-DummyLaser::CallbackReturn DummyLaser::on_configure(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    scan = create_publisher<sensor_msgs::msg::LaserScan>(
-      "scan", qos_scan());
-    // created cancelled: the activity starts on activate
-    timer_Scan_ = create_wall_timer(
-      std::chrono::nanoseconds(100000000), [this]() {run_Scan_();},
-      cbg_Scan_);
-    timer_Scan_->cancel();
-    fInit();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "configure failed: %s", error.what());
-    release_();
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "configure failed: unknown exception");
-    release_();
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-DummyLaser::CallbackReturn DummyLaser::on_activate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    scan->on_activate();
-    active_.store(true);
-    timer_Scan_->reset();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "activate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-DummyLaser::CallbackReturn DummyLaser::on_deactivate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  try {
-    timer_Scan_->cancel();
-    scan->on_deactivate();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-DummyLaser::CallbackReturn DummyLaser::on_cleanup(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-DummyLaser::CallbackReturn DummyLaser::on_shutdown(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-DummyLaser::CallbackReturn DummyLaser::on_error(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-void DummyLaser::release_()
-{
-  if (timer_Scan_) {
-    timer_Scan_->cancel();
-    timer_Scan_.reset();
-  }
-  scan.reset();
-}
-
-void DummyLaser::run_Scan_()
-{
-  if (!active_.load()) {
-    return;
-  }
-  try {
-    fScan();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activity Scan failed: %s", error.what());
-  }
+  keep_publisher(
+    scan, create_publisher<sensor_msgs::msg::LaserScan>(
+      "scan", qos_scan()));
+  add_periodic(
+    "Scan", std::chrono::nanoseconds(100000000), [this]() {
+      fScan();
+    });
 }
 
 }  // namespace cpp_dummy_laser

@@ -5,7 +5,7 @@
 
 #include "cpp_dummy_map_server/DummyMapServer.hpp"
 
-#include <exception>
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -61,7 +61,7 @@ DummyMapServer::DummyMapServer(const rclcpp::NodeOptions & options)
 DummyMapServer::DummyMapServer(
   const std::string & node_name,
   const rclcpp::NodeOptions & options)
-: rclcpp_lifecycle::LifecycleNode(node_name, options),
+: robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
   {
@@ -108,12 +108,16 @@ DummyMapServer::DummyMapServer(
     default_value = "world";
     declare_parameter<std::string>("frame_id", default_value, descriptor);
   }
-  cbg_Publish_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  add_activity("Publish");
+  set_lifecycle(
+    "on_configure", [this]() {
+      fInit();
+    });
 }
 
 DummyMapServer::~DummyMapServer()
 {
-  release_();
+  release();
 }
 
 const DummyMapServer::Parameters & DummyMapServer::params() const
@@ -121,139 +125,15 @@ const DummyMapServer::Parameters & DummyMapServer::params() const
   return params_;
 }
 
-bool DummyMapServer::is_active() const
+void DummyMapServer::create_ports()
 {
-  return active_.load();
-}
-
-DummyMapServer::CallbackReturn DummyMapServer::on_configure(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    map = create_publisher<nav_msgs::msg::OccupancyGrid>(
-      "map", qos_map());
-    // created cancelled: the activity starts on activate
-    timer_Publish_ = create_wall_timer(
-      std::chrono::nanoseconds(1000000000), [this]() {run_Publish_();},
-      cbg_Publish_);
-    timer_Publish_->cancel();
-    fInit();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "configure failed: %s", error.what());
-    release_();
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "configure failed: unknown exception");
-    release_();
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-DummyMapServer::CallbackReturn DummyMapServer::on_activate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    map->on_activate();
-    active_.store(true);
-    timer_Publish_->reset();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "activate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-DummyMapServer::CallbackReturn DummyMapServer::on_deactivate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  try {
-    timer_Publish_->cancel();
-    map->on_deactivate();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-DummyMapServer::CallbackReturn DummyMapServer::on_cleanup(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-DummyMapServer::CallbackReturn DummyMapServer::on_shutdown(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-DummyMapServer::CallbackReturn DummyMapServer::on_error(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-void DummyMapServer::release_()
-{
-  if (timer_Publish_) {
-    timer_Publish_->cancel();
-    timer_Publish_.reset();
-  }
-  map.reset();
-}
-
-void DummyMapServer::run_Publish_()
-{
-  if (!active_.load()) {
-    return;
-  }
-  try {
-    fPublish();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activity Publish failed: %s", error.what());
-  }
+  keep_publisher(
+    map, create_publisher<nav_msgs::msg::OccupancyGrid>(
+      "map", qos_map()));
+  add_periodic(
+    "Publish", std::chrono::nanoseconds(1000000000), [this]() {
+      fPublish();
+    });
 }
 
 }  // namespace cpp_dummy_map_server

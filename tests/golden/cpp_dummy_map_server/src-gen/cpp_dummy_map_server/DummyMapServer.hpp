@@ -5,27 +5,25 @@
 
 #pragma once
 
-#include <atomic>
-#include <chrono>
 #include <memory>
-#include <mutex>
 #include <string>
 
 #include "rclcpp/rclcpp.hpp"
 #include "rclcpp_lifecycle/lifecycle_node.hpp"
 #include "rclcpp_lifecycle/lifecycle_publisher.hpp"
 #include "nav_msgs/msg/occupancy_grid.hpp"
+#include "robmosys_runtime/component_node.hpp"
 
 namespace cpp_dummy_map_server
 {
 
+/// The classes of the ports (robmosys_runtime), as the component names them.
+namespace ports = robmosys_runtime;
+
 /// Publishes an occupancy grid once a second.
-class DummyMapServer : public rclcpp_lifecycle::LifecycleNode
+class DummyMapServer : public robmosys_runtime::ComponentNode
 {
 public:
-  using CallbackReturn =
-    rclcpp_lifecycle::node_interfaces::LifecycleNodeInterface::CallbackReturn;
-
   /// Typed access to the current parameter values of DummyMapServer.
   class Parameters
   {
@@ -59,16 +57,9 @@ private:
   /// Return the parameters of the node.
   const Parameters & params() const;
 
-  /// Return whether the node is active (activities run only then).
-  bool is_active() const;
-
 protected:
-  CallbackReturn on_configure(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_activate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_deactivate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_cleanup(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_shutdown(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_error(const rclcpp_lifecycle::State & state) override;
+  /// Create the ports, and the timers of the periodic activities (on configure).
+  void create_ports() override;
 
   /// Prepare a map of the size of the parameters, with a border of obstacles.
   virtual void fInit() = 0;
@@ -80,15 +71,7 @@ protected:
   rclcpp_lifecycle::LifecyclePublisher<nav_msgs::msg::OccupancyGrid>::SharedPtr map;
 
 private:
-  /// Destroy the ports and timers created on configure.
-  void release_();
-  /// Run the periodic activity Publish.
-  void run_Publish_();
-
   Parameters params_;
-  std::atomic<bool> active_{false};
-  rclcpp::CallbackGroup::SharedPtr cbg_Publish_;
-  rclcpp::TimerBase::SharedPtr timer_Publish_;
 };
 
 }  // namespace cpp_dummy_map_server

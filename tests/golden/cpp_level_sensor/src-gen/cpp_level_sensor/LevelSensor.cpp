@@ -5,7 +5,7 @@
 
 #include "cpp_level_sensor/LevelSensor.hpp"
 
-#include <exception>
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -41,16 +41,16 @@ LevelSensor::LevelSensor(const rclcpp::NodeOptions & options)
 LevelSensor::LevelSensor(
   const std::string & node_name,
   const rclcpp::NodeOptions & options)
-: rclcpp_lifecycle::LifecycleNode(node_name, options),
+: robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
-  cbg_Measure_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_Condition_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  add_activity("Measure");
+  add_activity("Condition");
 }
 
 LevelSensor::~LevelSensor()
 {
-  release_();
+  release();
 }
 
 const LevelSensor::Parameters & LevelSensor::params() const
@@ -58,141 +58,20 @@ const LevelSensor::Parameters & LevelSensor::params() const
   return params_;
 }
 
-bool LevelSensor::is_active() const
+void LevelSensor::create_ports()
 {
-  return active_.load();
-}
-
-LevelSensor::CallbackReturn LevelSensor::on_configure(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    eLevel = std::make_shared<ports::EventServer<example_msgs::action::LevelAbove>>(
-      this, "eLevel", qos_eLevel(), [this]() {return active_.load();},
+  keep(
+    eLevel, std::make_shared<ports::EventServer<example_msgs::action::LevelAbove>>(
+      this, "eLevel", qos_eLevel(), [this]() {return is_active();},
       [this](
         const example_msgs::action::LevelAbove::Goal & activation,
         const example_msgs::action::LevelAbove::Feedback & event) {
         return fAbove(activation, event);
-      }, cbg_Condition_);
-    // created cancelled: the activity starts on activate
-    timer_Measure_ = create_wall_timer(
-      std::chrono::nanoseconds(50000000), [this]() {run_Measure_();},
-      cbg_Measure_);
-    timer_Measure_->cancel();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "configure failed: %s", error.what());
-    release_();
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "configure failed: unknown exception");
-    release_();
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-LevelSensor::CallbackReturn LevelSensor::on_activate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    active_.store(true);
-    timer_Measure_->reset();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "activate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-LevelSensor::CallbackReturn LevelSensor::on_deactivate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  try {
-    timer_Measure_->cancel();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-LevelSensor::CallbackReturn LevelSensor::on_cleanup(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-LevelSensor::CallbackReturn LevelSensor::on_shutdown(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-LevelSensor::CallbackReturn LevelSensor::on_error(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-void LevelSensor::release_()
-{
-  if (timer_Measure_) {
-    timer_Measure_->cancel();
-    timer_Measure_.reset();
-  }
-  eLevel.reset();
-}
-
-void LevelSensor::run_Measure_()
-{
-  if (!active_.load()) {
-    return;
-  }
-  try {
-    fMeasure();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activity Measure failed: %s", error.what());
-  }
+      }, activity("Condition")));
+  add_periodic(
+    "Measure", std::chrono::nanoseconds(50000000), [this]() {
+      fMeasure();
+    });
 }
 
 bool LevelSensor::fAbove(

@@ -5,10 +5,7 @@
 
 #pragma once
 
-#include <atomic>
-#include <chrono>
 #include <memory>
-#include <mutex>
 #include <string>
 
 #include "rclcpp/rclcpp.hpp"
@@ -16,19 +13,19 @@
 #include "rclcpp_lifecycle/lifecycle_publisher.hpp"
 #include "rclcpp_action/rclcpp_action.hpp"
 #include "example_msgs/action/level_above.hpp"
-
-#include "cpp_level_sensor/ports.hpp"
+#include "robmosys_runtime/component_node.hpp"
+#include "robmosys_runtime/event_server.hpp"
 
 namespace cpp_level_sensor
 {
 
+/// The classes of the ports (robmosys_runtime), as the component names them.
+namespace ports = robmosys_runtime;
+
 /// Measures a level that climbs from 0 to 19 and starts again.
-class LevelSensor : public rclcpp_lifecycle::LifecycleNode
+class LevelSensor : public robmosys_runtime::ComponentNode
 {
 public:
-  using CallbackReturn =
-    rclcpp_lifecycle::node_interfaces::LifecycleNodeInterface::CallbackReturn;
-
   /// Typed access to the current parameter values of LevelSensor.
   class Parameters
   {
@@ -50,16 +47,9 @@ private:
   /// Return the parameters of the node.
   const Parameters & params() const;
 
-  /// Return whether the node is active (activities run only then).
-  bool is_active() const;
-
 protected:
-  CallbackReturn on_configure(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_activate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_deactivate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_cleanup(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_shutdown(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_error(const rclcpp_lifecycle::State & state) override;
+  /// Create the ports, and the timers of the periodic activities (on configure).
+  void create_ports() override;
 
   /// Take the next level; it is a candidate event for every activation.
   virtual void fMeasure() = 0;
@@ -73,16 +63,7 @@ protected:
   std::shared_ptr<ports::EventServer<example_msgs::action::LevelAbove>> eLevel;
 
 private:
-  /// Destroy the ports and timers created on configure.
-  void release_();
-  /// Run the periodic activity Measure.
-  void run_Measure_();
-
   Parameters params_;
-  std::atomic<bool> active_{false};
-  rclcpp::CallbackGroup::SharedPtr cbg_Measure_;
-  rclcpp::CallbackGroup::SharedPtr cbg_Condition_;
-  rclcpp::TimerBase::SharedPtr timer_Measure_;
 };
 
 }  // namespace cpp_level_sensor

@@ -5,7 +5,7 @@
 
 #include "cpp_level_watcher/LevelWatcher.hpp"
 
-#include <exception>
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -46,7 +46,7 @@ LevelWatcher::LevelWatcher(const rclcpp::NodeOptions & options)
 LevelWatcher::LevelWatcher(
   const std::string & node_name,
   const rclcpp::NodeOptions & options)
-: rclcpp_lifecycle::LifecycleNode(node_name, options),
+: robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
   {
@@ -61,14 +61,17 @@ LevelWatcher::LevelWatcher(
     const int64_t default_value = INT64_C(15);
     declare_parameter<int64_t>("threshold", default_value, descriptor);
   }
-  cbg_Watch_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_OnEvent_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
-  cbg_eLevel_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  add_activity("Watch");
+  add_activity("OnEvent");
+  set_lifecycle(
+    "on_configure", [this]() {
+      fForget();
+    });
 }
 
 LevelWatcher::~LevelWatcher()
 {
-  release_();
+  release();
 }
 
 const LevelWatcher::Parameters & LevelWatcher::params() const
@@ -76,147 +79,19 @@ const LevelWatcher::Parameters & LevelWatcher::params() const
   return params_;
 }
 
-bool LevelWatcher::is_active() const
+void LevelWatcher::create_ports()
 {
-  return active_.load();
-}
-
-LevelWatcher::CallbackReturn LevelWatcher::on_configure(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    eLevel = std::make_shared<ports::EventClient<example_msgs::action::LevelAbove>>(
+  keep(
+    eLevel, std::make_shared<ports::EventClient<example_msgs::action::LevelAbove>>(
       this, "eLevel", qos_eLevel(),
-      [this](const example_msgs::action::LevelAbove::Feedback & commobj) {
-        if (!active_.load()) {
-          return;
-        }
-        try {
+      in_activity<const example_msgs::action::LevelAbove::Feedback &>(
+        "OnEvent", [this](const example_msgs::action::LevelAbove::Feedback & commobj) {
           fOnEvent(commobj);
-        } catch (const std::exception & error) {
-          RCLCPP_ERROR(get_logger(), "activity OnEvent failed: %s", error.what());
-        }
-      }, cbg_eLevel_);
-    // created cancelled: the activity starts on activate
-    timer_Watch_ = create_wall_timer(
-      std::chrono::nanoseconds(300000000), [this]() {run_Watch_();},
-      cbg_Watch_);
-    timer_Watch_->cancel();
-    fForget();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "configure failed: %s", error.what());
-    release_();
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "configure failed: unknown exception");
-    release_();
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-LevelWatcher::CallbackReturn LevelWatcher::on_activate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    active_.store(true);
-    timer_Watch_->reset();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "activate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-LevelWatcher::CallbackReturn LevelWatcher::on_deactivate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  try {
-    timer_Watch_->cancel();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-LevelWatcher::CallbackReturn LevelWatcher::on_cleanup(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-LevelWatcher::CallbackReturn LevelWatcher::on_shutdown(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-LevelWatcher::CallbackReturn LevelWatcher::on_error(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-void LevelWatcher::release_()
-{
-  if (timer_Watch_) {
-    timer_Watch_->cancel();
-    timer_Watch_.reset();
-  }
-  eLevel.reset();
-}
-
-void LevelWatcher::run_Watch_()
-{
-  if (!active_.load()) {
-    return;
-  }
-  try {
-    fWatch();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activity Watch failed: %s", error.what());
-  }
+        }), own_group("eLevel")));
+  add_periodic(
+    "Watch", std::chrono::nanoseconds(300000000), [this]() {
+      fWatch();
+    });
 }
 
 void LevelWatcher::fOnEvent(const example_msgs::action::LevelAbove::Feedback & commobj)

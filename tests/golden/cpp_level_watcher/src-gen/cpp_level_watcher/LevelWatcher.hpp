@@ -5,10 +5,7 @@
 
 #pragma once
 
-#include <atomic>
-#include <chrono>
 #include <memory>
-#include <mutex>
 #include <string>
 
 #include "rclcpp/rclcpp.hpp"
@@ -16,19 +13,19 @@
 #include "rclcpp_lifecycle/lifecycle_publisher.hpp"
 #include "rclcpp_action/rclcpp_action.hpp"
 #include "example_msgs/action/level_above.hpp"
-
-#include "cpp_level_watcher/ports.hpp"
+#include "robmosys_runtime/component_node.hpp"
+#include "robmosys_runtime/event_client.hpp"
 
 namespace cpp_level_watcher
 {
 
+/// The classes of the ports (robmosys_runtime), as the component names them.
+namespace ports = robmosys_runtime;
+
 /// Watches the level, continuously and for one event.
-class LevelWatcher : public rclcpp_lifecycle::LifecycleNode
+class LevelWatcher : public robmosys_runtime::ComponentNode
 {
 public:
-  using CallbackReturn =
-    rclcpp_lifecycle::node_interfaces::LifecycleNodeInterface::CallbackReturn;
-
   /// Typed access to the current parameter values of LevelWatcher.
   class Parameters
   {
@@ -53,16 +50,9 @@ private:
   /// Return the parameters of the node.
   const Parameters & params() const;
 
-  /// Return whether the node is active (activities run only then).
-  bool is_active() const;
-
 protected:
-  CallbackReturn on_configure(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_activate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_deactivate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_cleanup(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_shutdown(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_error(const rclcpp_lifecycle::State & state) override;
+  /// Create the ports, and the timers of the periodic activities (on configure).
+  void create_ports() override;
 
   /// Activate the event once the sensor is there; report the single activation.
   virtual void fWatch() = 0;
@@ -77,17 +67,7 @@ protected:
   std::shared_ptr<ports::EventClient<example_msgs::action::LevelAbove>> eLevel;
 
 private:
-  /// Destroy the ports and timers created on configure.
-  void release_();
-  /// Run the periodic activity Watch.
-  void run_Watch_();
-
   Parameters params_;
-  std::atomic<bool> active_{false};
-  rclcpp::CallbackGroup::SharedPtr cbg_Watch_;
-  rclcpp::CallbackGroup::SharedPtr cbg_OnEvent_;
-  rclcpp::CallbackGroup::SharedPtr cbg_eLevel_;
-  rclcpp::TimerBase::SharedPtr timer_Watch_;
 };
 
 }  // namespace cpp_level_watcher

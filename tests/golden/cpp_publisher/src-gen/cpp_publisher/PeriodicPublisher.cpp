@@ -5,7 +5,7 @@
 
 #include "cpp_publisher/PeriodicPublisher.hpp"
 
-#include <exception>
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -51,7 +51,7 @@ PeriodicPublisher::PeriodicPublisher(const rclcpp::NodeOptions & options)
 PeriodicPublisher::PeriodicPublisher(
   const std::string & node_name,
   const rclcpp::NodeOptions & options)
-: rclcpp_lifecycle::LifecycleNode(node_name, options),
+: robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
   {
@@ -68,12 +68,12 @@ PeriodicPublisher::PeriodicPublisher(
     const int64_t default_value = INT64_C(0);
     declare_parameter<int64_t>("noOfScans", default_value, descriptor);
   }
-  cbg_Activity1_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  add_activity("Activity1");
 }
 
 PeriodicPublisher::~PeriodicPublisher()
 {
-  release_();
+  release();
 }
 
 const PeriodicPublisher::Parameters & PeriodicPublisher::params() const
@@ -81,138 +81,15 @@ const PeriodicPublisher::Parameters & PeriodicPublisher::params() const
   return params_;
 }
 
-bool PeriodicPublisher::is_active() const
+void PeriodicPublisher::create_ports()
 {
-  return active_.load();
-}
-
-PeriodicPublisher::CallbackReturn PeriodicPublisher::on_configure(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    pMap = create_publisher<simple_msgs::msg::Map>(
-      "pMap", qos_pMap());
-    // created cancelled: the activity starts on activate
-    timer_Activity1_ = create_wall_timer(
-      std::chrono::nanoseconds(500000000), [this]() {run_Activity1_();},
-      cbg_Activity1_);
-    timer_Activity1_->cancel();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "configure failed: %s", error.what());
-    release_();
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "configure failed: unknown exception");
-    release_();
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-PeriodicPublisher::CallbackReturn PeriodicPublisher::on_activate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    pMap->on_activate();
-    active_.store(true);
-    timer_Activity1_->reset();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "activate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-PeriodicPublisher::CallbackReturn PeriodicPublisher::on_deactivate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  try {
-    timer_Activity1_->cancel();
-    pMap->on_deactivate();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-PeriodicPublisher::CallbackReturn PeriodicPublisher::on_cleanup(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-PeriodicPublisher::CallbackReturn PeriodicPublisher::on_shutdown(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-PeriodicPublisher::CallbackReturn PeriodicPublisher::on_error(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-void PeriodicPublisher::release_()
-{
-  if (timer_Activity1_) {
-    timer_Activity1_->cancel();
-    timer_Activity1_.reset();
-  }
-  pMap.reset();
-}
-
-void PeriodicPublisher::run_Activity1_()
-{
-  if (!active_.load()) {
-    return;
-  }
-  try {
-    fPublishing();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activity Activity1 failed: %s", error.what());
-  }
+  keep_publisher(
+    pMap, create_publisher<simple_msgs::msg::Map>(
+      "pMap", qos_pMap()));
+  add_periodic(
+    "Activity1", std::chrono::nanoseconds(500000000), [this]() {
+      fPublishing();
+    });
 }
 
 void PeriodicPublisher::fPublishing()

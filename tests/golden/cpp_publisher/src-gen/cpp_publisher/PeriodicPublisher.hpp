@@ -5,27 +5,25 @@
 
 #pragma once
 
-#include <atomic>
-#include <chrono>
 #include <memory>
-#include <mutex>
 #include <string>
 
 #include "rclcpp/rclcpp.hpp"
 #include "rclcpp_lifecycle/lifecycle_node.hpp"
 #include "rclcpp_lifecycle/lifecycle_publisher.hpp"
 #include "simple_msgs/msg/map.hpp"
+#include "robmosys_runtime/component_node.hpp"
 
 namespace cpp_publisher
 {
 
+/// The classes of the ports (robmosys_runtime), as the component names them.
+namespace ports = robmosys_runtime;
+
 /// Publishes a small map twice a second (the C++ publisher of the reference).
-class PeriodicPublisher : public rclcpp_lifecycle::LifecycleNode
+class PeriodicPublisher : public robmosys_runtime::ComponentNode
 {
 public:
-  using CallbackReturn =
-    rclcpp_lifecycle::node_interfaces::LifecycleNodeInterface::CallbackReturn;
-
   /// Typed access to the current parameter values of PeriodicPublisher.
   class Parameters
   {
@@ -53,16 +51,9 @@ private:
   /// Return the parameters of the node.
   const Parameters & params() const;
 
-  /// Return whether the node is active (activities run only then).
-  bool is_active() const;
-
 protected:
-  CallbackReturn on_configure(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_activate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_deactivate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_cleanup(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_shutdown(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_error(const rclcpp_lifecycle::State & state) override;
+  /// Create the ports, and the timers of the periodic activities (on configure).
+  void create_ports() override;
 
   /// Fill a 16 x 16 map and publish it.
   virtual void fPublishing();
@@ -71,15 +62,7 @@ protected:
   rclcpp_lifecycle::LifecyclePublisher<simple_msgs::msg::Map>::SharedPtr pMap;
 
 private:
-  /// Destroy the ports and timers created on configure.
-  void release_();
-  /// Run the periodic activity Activity1.
-  void run_Activity1_();
-
   Parameters params_;
-  std::atomic<bool> active_{false};
-  rclcpp::CallbackGroup::SharedPtr cbg_Activity1_;
-  rclcpp::TimerBase::SharedPtr timer_Activity1_;
 };
 
 }  // namespace cpp_publisher

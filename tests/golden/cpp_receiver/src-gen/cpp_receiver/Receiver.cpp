@@ -5,7 +5,6 @@
 
 #include "cpp_receiver/Receiver.hpp"
 
-#include <exception>
 #include <memory>
 #include <string>
 
@@ -41,15 +40,15 @@ Receiver::Receiver(const rclcpp::NodeOptions & options)
 Receiver::Receiver(
   const std::string & node_name,
   const rclcpp::NodeOptions & options)
-: rclcpp_lifecycle::LifecycleNode(node_name, options),
+: robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
-  cbg_Receive_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  add_activity("Receive");
 }
 
 Receiver::~Receiver()
 {
-  release_();
+  release();
 }
 
 const Receiver::Parameters & Receiver::params() const
@@ -57,125 +56,19 @@ const Receiver::Parameters & Receiver::params() const
   return params_;
 }
 
-bool Receiver::is_active() const
+void Receiver::create_ports()
 {
-  return active_.load();
-}
-
-Receiver::CallbackReturn Receiver::on_configure(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    rclcpp::SubscriptionOptions sMap_options;
-    sMap_options.callback_group = cbg_Receive_;
-    sMap = create_subscription<simple_msgs::msg::Map>(
-      "sMap", qos_sMap(),
-      [this](const simple_msgs::msg::Map & commobj) {
-        if (!active_.load()) {
-          return;
-        }
-        try {
-          fReceiving(commobj);
-        } catch (const std::exception & error) {
-          RCLCPP_ERROR(get_logger(), "activity Receive failed: %s", error.what());
-        }
-      }, sMap_options);
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "configure failed: %s", error.what());
-    release_();
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "configure failed: unknown exception");
-    release_();
-    return CallbackReturn::FAILURE;
+  {
+    rclcpp::SubscriptionOptions options;
+    options.callback_group = activity("Receive");
+    keep(
+      sMap, create_subscription<simple_msgs::msg::Map>(
+        "sMap", qos_sMap(),
+        in_activity<const simple_msgs::msg::Map &>(
+          "Receive", [this](const simple_msgs::msg::Map & commobj) {
+            fReceiving(commobj);
+          }), options));
   }
-  return CallbackReturn::SUCCESS;
-}
-
-Receiver::CallbackReturn Receiver::on_activate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    active_.store(true);
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "activate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Receiver::CallbackReturn Receiver::on_deactivate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  try {
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Receiver::CallbackReturn Receiver::on_cleanup(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-Receiver::CallbackReturn Receiver::on_shutdown(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-Receiver::CallbackReturn Receiver::on_error(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-void Receiver::release_()
-{
-  sMap.reset();
 }
 
 }  // namespace cpp_receiver

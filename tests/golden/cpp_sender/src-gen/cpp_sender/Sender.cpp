@@ -5,7 +5,7 @@
 
 #include "cpp_sender/Sender.hpp"
 
-#include <exception>
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -56,7 +56,7 @@ Sender::Sender(const rclcpp::NodeOptions & options)
 Sender::Sender(
   const std::string & node_name,
   const rclcpp::NodeOptions & options)
-: rclcpp_lifecycle::LifecycleNode(node_name, options),
+: robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
   {
@@ -91,12 +91,12 @@ Sender::Sender(
     default_value = "map";
     declare_parameter<std::string>("frame", default_value, descriptor);
   }
-  cbg_Send_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  add_activity("Send");
 }
 
 Sender::~Sender()
 {
-  release_();
+  release();
 }
 
 const Sender::Parameters & Sender::params() const
@@ -104,138 +104,15 @@ const Sender::Parameters & Sender::params() const
   return params_;
 }
 
-bool Sender::is_active() const
+void Sender::create_ports()
 {
-  return active_.load();
-}
-
-Sender::CallbackReturn Sender::on_configure(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    sMap = create_publisher<simple_msgs::msg::Map>(
-      "sMap", qos_sMap());
-    // created cancelled: the activity starts on activate
-    timer_Send_ = create_wall_timer(
-      std::chrono::nanoseconds(500000000), [this]() {run_Send_();},
-      cbg_Send_);
-    timer_Send_->cancel();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "configure failed: %s", error.what());
-    release_();
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "configure failed: unknown exception");
-    release_();
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Sender::CallbackReturn Sender::on_activate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    sMap->on_activate();
-    active_.store(true);
-    timer_Send_->reset();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "activate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Sender::CallbackReturn Sender::on_deactivate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  try {
-    timer_Send_->cancel();
-    sMap->on_deactivate();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Sender::CallbackReturn Sender::on_cleanup(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-Sender::CallbackReturn Sender::on_shutdown(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-Sender::CallbackReturn Sender::on_error(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-void Sender::release_()
-{
-  if (timer_Send_) {
-    timer_Send_->cancel();
-    timer_Send_.reset();
-  }
-  sMap.reset();
-}
-
-void Sender::run_Send_()
-{
-  if (!active_.load()) {
-    return;
-  }
-  try {
-    fSending();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activity Send failed: %s", error.what());
-  }
+  keep_publisher(
+    sMap, create_publisher<simple_msgs::msg::Map>(
+      "sMap", qos_sMap()));
+  add_periodic(
+    "Send", std::chrono::nanoseconds(500000000), [this]() {
+      fSending();
+    });
 }
 
 void Sender::fSending()

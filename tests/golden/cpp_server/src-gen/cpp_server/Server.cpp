@@ -5,7 +5,6 @@
 
 #include "cpp_server/Server.hpp"
 
-#include <exception>
 #include <memory>
 #include <string>
 
@@ -25,15 +24,15 @@ Server::Server(const rclcpp::NodeOptions & options)
 Server::Server(
   const std::string & node_name,
   const rclcpp::NodeOptions & options)
-: rclcpp_lifecycle::LifecycleNode(node_name, options),
+: robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
-  cbg_Answer_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  add_activity("Answer");
 }
 
 Server::~Server()
 {
-  release_();
+  release();
 }
 
 const Server::Parameters & Server::params() const
@@ -41,128 +40,16 @@ const Server::Parameters & Server::params() const
   return params_;
 }
 
-bool Server::is_active() const
+void Server::create_ports()
 {
-  return active_.load();
-}
-
-Server::CallbackReturn Server::on_configure(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    qAdd = create_service<example_msgs::srv::AddTwoInts>(
-      "qAdd",
+  keep(
+    qAdd, create_query_server<example_msgs::srv::AddTwoInts>(
+      "qAdd", "Answer",
       [this](
-        const std::shared_ptr<example_msgs::srv::AddTwoInts::Request> request,
-        std::shared_ptr<example_msgs::srv::AddTwoInts::Response> response) {
-        if (!active_.load()) {
-          RCLCPP_WARN(
-            get_logger(), "query on the port qAdd while inactive: "
-            "answering with the default response");
-          return;
-        }
-        try {
-          fAdd(*request, *response);
-        } catch (const std::exception & error) {
-          RCLCPP_ERROR(get_logger(), "activity Answer failed: %s", error.what());
-        }
-      }, rclcpp::ServicesQoS(), cbg_Answer_);
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "configure failed: %s", error.what());
-    release_();
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "configure failed: unknown exception");
-    release_();
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Server::CallbackReturn Server::on_activate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    active_.store(true);
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "activate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Server::CallbackReturn Server::on_deactivate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  try {
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Server::CallbackReturn Server::on_cleanup(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-Server::CallbackReturn Server::on_shutdown(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-Server::CallbackReturn Server::on_error(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-void Server::release_()
-{
-  qAdd.reset();
+        const example_msgs::srv::AddTwoInts::Request & request,
+        example_msgs::srv::AddTwoInts::Response & response) {
+        fAdd(request, response);
+      }));
 }
 
 }  // namespace cpp_server

@@ -5,27 +5,25 @@
 
 #pragma once
 
-#include <atomic>
-#include <chrono>
 #include <memory>
-#include <mutex>
 #include <string>
 
 #include "rclcpp/rclcpp.hpp"
 #include "rclcpp_lifecycle/lifecycle_node.hpp"
 #include "rclcpp_lifecycle/lifecycle_publisher.hpp"
 #include "example_msgs/srv/add_two_ints.hpp"
+#include "robmosys_runtime/component_node.hpp"
 
 namespace cpp_server
 {
 
+/// The classes of the ports (robmosys_runtime), as the component names them.
+namespace ports = robmosys_runtime;
+
 /// Adds two integers for whoever asks (the C++ twin of add_server).
-class Server : public rclcpp_lifecycle::LifecycleNode
+class Server : public robmosys_runtime::ComponentNode
 {
 public:
-  using CallbackReturn =
-    rclcpp_lifecycle::node_interfaces::LifecycleNodeInterface::CallbackReturn;
-
   /// Typed access to the current parameter values of Server.
   class Parameters
   {
@@ -47,16 +45,9 @@ private:
   /// Return the parameters of the node.
   const Parameters & params() const;
 
-  /// Return whether the node is active (activities run only then).
-  bool is_active() const;
-
 protected:
-  CallbackReturn on_configure(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_activate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_deactivate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_cleanup(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_shutdown(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_error(const rclcpp_lifecycle::State & state) override;
+  /// Create the ports, and the timers of the periodic activities (on configure).
+  void create_ports() override;
 
   /// Answer a request with the sum.
   virtual void fAdd(
@@ -67,12 +58,7 @@ protected:
   rclcpp::Service<example_msgs::srv::AddTwoInts>::SharedPtr qAdd;
 
 private:
-  /// Destroy the ports and timers created on configure.
-  void release_();
-
   Parameters params_;
-  std::atomic<bool> active_{false};
-  rclcpp::CallbackGroup::SharedPtr cbg_Answer_;
 };
 
 }  // namespace cpp_server

@@ -3,48 +3,13 @@
 // Do not edit: the next generation replaces this file.
 // Copyright and license: those of the package cpp_server (package.xml).
 
-#include <algorithm>
-#include <exception>
-#include <memory>
-#include <thread>
-
-#include "lifecycle_msgs/msg/state.hpp"
-#include "rclcpp/rclcpp.hpp"
+#include "robmosys_runtime/main.hpp"
 
 #include "cpp_server/Server_impl.hpp"
 
 /// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
-  // rclcpp::init installs the SIGINT and SIGTERM handlers that end spin()
-  rclcpp::init(argc, argv);
-  int status = 0;
-  try {
-    auto node = std::make_shared<cpp_server::Server_impl>();
-    // SIGINT or SIGTERM shut the context down; before that, the node takes
-    // its shutdown transition (its on_shutdown functions run, ports are
-    // released) while it can still tell the lifecycle clients
-    std::weak_ptr<cpp_server::Server_impl> weak_node = node;
-    rclcpp::contexts::get_global_default_context()->add_pre_shutdown_callback(
-      [weak_node]() {
-        auto alive = weak_node.lock();
-        const auto finalized = lifecycle_msgs::msg::State::PRIMARY_STATE_FINALIZED;
-        if (alive && alive->get_current_state().id() != finalized) {
-          alive->shutdown();
-        }
-      });
-    // one thread per callback group and one more, so that a blocking call
-    // in one activity never starves the thread that delivers its answer
-    const size_t threads =
-      std::max<size_t>(std::thread::hardware_concurrency(), 2);
-    rclcpp::executors::MultiThreadedExecutor executor(rclcpp::ExecutorOptions(), threads);
-    executor.add_node(node->get_node_base_interface());
-    executor.spin();
-    executor.remove_node(node->get_node_base_interface());
-  } catch (const std::exception & error) {
-    RCLCPP_FATAL(rclcpp::get_logger("Server"), "%s", error.what());
-    status = 1;
-  }
-  rclcpp::shutdown();
-  return status;
+  return robmosys_runtime::run<cpp_server::Server_impl>(
+    argc, argv, 2, "Server");
 }

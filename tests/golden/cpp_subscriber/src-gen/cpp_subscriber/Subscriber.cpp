@@ -5,7 +5,6 @@
 
 #include "cpp_subscriber/Subscriber.hpp"
 
-#include <exception>
 #include <memory>
 #include <string>
 
@@ -41,15 +40,15 @@ Subscriber::Subscriber(const rclcpp::NodeOptions & options)
 Subscriber::Subscriber(
   const std::string & node_name,
   const rclcpp::NodeOptions & options)
-: rclcpp_lifecycle::LifecycleNode(node_name, options),
+: robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
-  cbg_HandleMsg_ = create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  add_activity("HandleMsg");
 }
 
 Subscriber::~Subscriber()
 {
-  release_();
+  release();
 }
 
 const Subscriber::Parameters & Subscriber::params() const
@@ -57,125 +56,19 @@ const Subscriber::Parameters & Subscriber::params() const
   return params_;
 }
 
-bool Subscriber::is_active() const
+void Subscriber::create_ports()
 {
-  return active_.load();
-}
-
-Subscriber::CallbackReturn Subscriber::on_configure(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    rclcpp::SubscriptionOptions rMap_options;
-    rMap_options.callback_group = cbg_HandleMsg_;
-    rMap = create_subscription<simple_msgs::msg::Map>(
-      "rMap", qos_rMap(),
-      [this](const simple_msgs::msg::Map & commobj) {
-        if (!active_.load()) {
-          return;
-        }
-        try {
-          fListening(commobj);
-        } catch (const std::exception & error) {
-          RCLCPP_ERROR(get_logger(), "activity HandleMsg failed: %s", error.what());
-        }
-      }, rMap_options);
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "configure failed: %s", error.what());
-    release_();
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "configure failed: unknown exception");
-    release_();
-    return CallbackReturn::FAILURE;
+  {
+    rclcpp::SubscriptionOptions options;
+    options.callback_group = activity("HandleMsg");
+    keep(
+      rMap, create_subscription<simple_msgs::msg::Map>(
+        "rMap", qos_rMap(),
+        in_activity<const simple_msgs::msg::Map &>(
+          "HandleMsg", [this](const simple_msgs::msg::Map & commobj) {
+            fListening(commobj);
+          }), options));
   }
-  return CallbackReturn::SUCCESS;
-}
-
-Subscriber::CallbackReturn Subscriber::on_activate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  try {
-    active_.store(true);
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "activate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "activate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Subscriber::CallbackReturn Subscriber::on_deactivate(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  try {
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: %s", error.what());
-    return CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "deactivate failed: unknown exception");
-    return CallbackReturn::FAILURE;
-  }
-  return CallbackReturn::SUCCESS;
-}
-
-Subscriber::CallbackReturn Subscriber::on_cleanup(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "cleanup failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-Subscriber::CallbackReturn Subscriber::on_shutdown(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "shutdown failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-Subscriber::CallbackReturn Subscriber::on_error(
-  const rclcpp_lifecycle::State & /*state*/)
-{
-  active_.store(false);
-  CallbackReturn result = CallbackReturn::SUCCESS;
-  try {
-    release_();
-  } catch (const std::exception & error) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: %s", error.what());
-    result = CallbackReturn::FAILURE;
-  } catch (...) {
-    RCLCPP_ERROR(get_logger(), "error handling failed: unknown exception");
-    result = CallbackReturn::FAILURE;
-  }
-  return result;
-}
-
-void Subscriber::release_()
-{
-  rMap.reset();
 }
 
 }  // namespace cpp_subscriber

@@ -5,27 +5,25 @@
 
 #pragma once
 
-#include <atomic>
-#include <chrono>
 #include <memory>
-#include <mutex>
 #include <string>
 
 #include "rclcpp/rclcpp.hpp"
 #include "rclcpp_lifecycle/lifecycle_node.hpp"
 #include "rclcpp_lifecycle/lifecycle_publisher.hpp"
 #include "simple_msgs/msg/map.hpp"
+#include "robmosys_runtime/component_node.hpp"
 
 namespace cpp_subscriber
 {
 
+/// The classes of the ports (robmosys_runtime), as the component names them.
+namespace ports = robmosys_runtime;
+
 /// Prints the maps it receives (the C++ subscriber of the reference).
-class Subscriber : public rclcpp_lifecycle::LifecycleNode
+class Subscriber : public robmosys_runtime::ComponentNode
 {
 public:
-  using CallbackReturn =
-    rclcpp_lifecycle::node_interfaces::LifecycleNodeInterface::CallbackReturn;
-
   /// Typed access to the current parameter values of Subscriber.
   class Parameters
   {
@@ -47,16 +45,9 @@ private:
   /// Return the parameters of the node.
   const Parameters & params() const;
 
-  /// Return whether the node is active (activities run only then).
-  bool is_active() const;
-
 protected:
-  CallbackReturn on_configure(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_activate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_deactivate(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_cleanup(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_shutdown(const rclcpp_lifecycle::State & state) override;
-  CallbackReturn on_error(const rclcpp_lifecycle::State & state) override;
+  /// Create the ports, and the timers of the periodic activities (on configure).
+  void create_ports() override;
 
   /// Print the size of each map received.
   virtual void fListening(const simple_msgs::msg::Map & commobj) = 0;
@@ -65,12 +56,7 @@ protected:
   rclcpp::Subscription<simple_msgs::msg::Map>::SharedPtr rMap;
 
 private:
-  /// Destroy the ports and timers created on configure.
-  void release_();
-
   Parameters params_;
-  std::atomic<bool> active_{false};
-  rclcpp::CallbackGroup::SharedPtr cbg_HandleMsg_;
 };
 
 }  // namespace cpp_subscriber
