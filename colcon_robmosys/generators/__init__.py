@@ -11,6 +11,7 @@ everything goes through one renderer and one writer.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+import os
 from pathlib import Path
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
@@ -25,8 +26,8 @@ from colcon_robmosys.generators.render import render
 from colcon_robmosys.generators.system import system_package
 from colcon_robmosys.generators.usercode import check_user_file
 from colcon_robmosys.generators.writer import (
-    create_user_file, is_generated, remove_generated, remove_leftovers,
-    write_generated)
+    create_user_file, GENERATED_MARKER, is_generated, read_current,
+    remove_generated, remove_leftovers, sync_folders, write_generated)
 from colcon_robmosys.mapping.component import plan_component
 from colcon_robmosys.mapping.cpp import spell_cpp
 from colcon_robmosys.mapping.interfaces import plan_interfaces
@@ -79,17 +80,25 @@ def create_missing_user_files(plan: PackagePlan) -> list[Path]:
     created = []
     for user_file in plan.user_files:
         path = plan.model_dir / user_file.source_path
+        if path.exists() or path.is_symlink():
+            continue  # the user's: rendering it would be for nothing
         text = render(user_file.template, user_file.context)
         if create_user_file(path, text.encode('utf-8')):
             created.append(path)
+    # each file was synced before it was linked; now its folder's entry
+    sync_folders(p.parent for p in created)
     return created
 
 
-def generate_package(plan: PackagePlan, out_dir: Path) -> GenerationReport:
+def generate_package(plan: PackagePlan, out_dir: Path, *,
+                     sync: bool = False) -> GenerationReport:
     """Write the package of a plan into out_dir.
 
     Everything is rendered and checked before the first file is written, so
     that a problem leaves the previous output as it was.
+
+    :param sync: make every file written durable (fsync, then each folder
+      once): for output a user keeps, not for the build tree
 
     :raises RobmosysError: if the user's code is missing or incomplete
     """
@@ -120,39 +129,73 @@ def generate_package(plan: PackagePlan, out_dir: Path) -> GenerationReport:
             data, executable = outputs[relative]
             write_generated(out_dir / relative, data, executable=executable)
         raise RobmosysError(problems)
-    return _write_outputs(outputs, out_dir)
+    return _write_outputs(outputs, out_dir, sync=sync)
 
 
-def _write_outputs(outputs: dict[str, tuple[bytes, bool]],
-                   out_dir: Path) -> GenerationReport:
+def _write_outputs(outputs: dict[str, tuple[bytes, bool]], out_dir: Path,
+                   *, sync: bool = False) -> GenerationReport:
+    """Write the outputs of a generation, after checking that each is ours.
+
+    The manifest is written once, before any file, and lists the new content
+    of each file and what is there now: a run killed half-way leaves every
+    file it wrote, or had not yet replaced, known as generated.
+    """
     report = GenerationReport()
-    if out_dir.is_dir():
-        report.removed += remove_leftovers(out_dir)
     manifest_path = out_dir / MANIFEST
     previous = read_manifest(manifest_path)
-    final: Manifest = {relative: {digest(data)}
-                       for relative, (data, _) in outputs.items()}
-    # a run killed half-way must leave every file it wrote known as ours:
-    # first record the old and the new content of each file, then write
-    pending: Manifest = dict(previous)
-    for relative, digests in final.items():
-        pending[relative] = (previous.get(relative) or set()) | (digests or set())
-    if pending != previous:
-        write_manifest(manifest_path, pending)
+    report.removed += remove_leftovers(out_dir, previous)
+    pending: Manifest = {}
+    changes: list[tuple[Path, bytes, bool, bool, bytes | None]] = []
+    refused: list[Diagnostic] = []
     for relative, (data, executable) in sorted(outputs.items()):
         path = out_dir / relative
-        if write_generated(path, data, executable=executable,
-                           owned=unchanged_since(path, previous, relative)):
-            report.written.append(path)
-        else:
-            report.unchanged.append(path)
+        current = read_current(path)
+        new = digest(data)
+        if current == data:
+            pending[relative] = {new}
+            if executable and not os.access(path, os.X_OK):
+                changes.append((path, data, executable, True, current))
+            else:
+                report.unchanged.append(path)
+            continue
+        if current is None:
+            pending[relative] = {new}
+            changes.append((path, data, executable, True, current))
+            continue
+        old = digest(current)
+        owned = relative in previous and (
+            previous[relative] is None or old in (previous[relative] or ()))
+        if not owned and GENERATED_MARKER not in current[:2048]:
+            refused.append(Diagnostic(
+                Location(str(path)), 'refusing to overwrite a file that '
+                'colcon-robmosys did not generate; move it away to let the '
+                'generator write here'))
+            continue
+        pending[relative] = {new, old}
+        changes.append((path, data, executable, owned, current))
+    if refused:
+        raise RobmosysError(refused)
+    stale = []
     for relative in sorted(previous.keys() - outputs.keys()):
         path = out_dir / relative
         if not unchanged_since(path, previous, relative) and \
                 not is_generated(path):
             # replaced by a file of the user's since: theirs to keep
             continue
+        pending[relative] = previous[relative]
+        stale.append(path)
+    if pending != previous:
+        write_manifest(manifest_path, pending, sync=sync)
+    for path, data, executable, owned, current in changes:
+        if write_generated(path, data, executable=executable, owned=owned,
+                           sync=sync, current=current):
+            report.written.append(path)
+        else:
+            report.unchanged.append(path)  # only its mode was set
+    for path in stale:
         if remove_generated(path, out_dir):
             report.removed.append(path)
-    write_manifest(manifest_path, final)
+    if sync and (report.written or report.removed):
+        sync_folders([out_dir] + [p.parent for p in report.written] +
+                     [p.parent for p in report.removed if p.parent.is_dir()])
     return report
