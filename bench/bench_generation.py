@@ -29,10 +29,11 @@ import time
 from typing import Sequence
 
 from benchlib import print_end, print_machine, ratio, spread, table
-from colcon_robmosys.check import find_model_files, load_workspace
+from colcon_robmosys.check import find_model_files, load_workspace, ModelCache
+from colcon_robmosys.check.cache import CACHE_DIR
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.generators import create_missing_user_files, generate_package
-from colcon_robmosys.generators import plan_package
+from colcon_robmosys.generators import plan_package, StampStore, unchanged_package
 from synthetic import ros_index, write_workspace
 
 
@@ -63,16 +64,27 @@ def generate_workspace(src: Path, out: Path, index: InterfaceIndex) -> Phases:
     the user's missing implementation files, render and write the packages.
     """
     start, cpu_start = time.perf_counter(), time.process_time()
-    result = load_workspace(find_model_files([src]), index)
+    # as colcon build keeps them in build/
+    cache = ModelCache(out / CACHE_DIR)
+    stamps = StampStore(out / CACHE_DIR / 'stamps')
+    result = load_workspace(find_model_files([src]), index, cache)
     result.raise_errors()
     loaded = time.perf_counter()
     workspace = result.workspace
-    plans = [plan_package(workspace, model.package) for model in workspace.models]
-    planned = time.perf_counter()
+    todo = []
     written = unchanged = 0
-    for plan in plans:
+    for model in workspace.models:
+        fingerprint = result.fingerprint(model.package)
+        report = unchanged_package(out / model.package, stamps, fingerprint)
+        if report is None:
+            todo.append((plan_package(workspace, model.package), fingerprint))
+        else:
+            unchanged += len(report.unchanged)
+    planned = time.perf_counter()
+    for plan, fingerprint in todo:
         create_missing_user_files(plan)
-        report = generate_package(plan, out / plan.name)
+        report = generate_package(plan, out / plan.name, stamps=stamps,
+                                  fingerprint=fingerprint)
         written += len(report.written)
         unchanged += len(report.unchanged)
     done = time.perf_counter()

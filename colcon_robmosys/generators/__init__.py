@@ -23,6 +23,7 @@ from colcon_robmosys.generators.manifest import (
 from colcon_robmosys.generators.plan import FileSpec, PackagePlan, UserFile
 from colcon_robmosys.generators.python import python_package
 from colcon_robmosys.generators.render import render
+from colcon_robmosys.generators.stamp import StampStore
 from colcon_robmosys.generators.system import system_package
 from colcon_robmosys.generators.usercode import check_user_file
 from colcon_robmosys.generators.writer import (
@@ -38,7 +39,7 @@ from colcon_robmosys.model.types import (
 
 __all__ = ['create_missing_user_files', 'FileSpec', 'generate_package',
            'GenerationReport', 'MANIFEST', 'PackagePlan', 'plan_package',
-           'read_manifest', 'UserFile']
+           'read_manifest', 'StampStore', 'unchanged_package', 'UserFile']
 
 
 @dataclass
@@ -91,7 +92,8 @@ def create_missing_user_files(plan: PackagePlan) -> list[Path]:
 
 
 def generate_package(plan: PackagePlan, out_dir: Path, *,
-                     sync: bool = False) -> GenerationReport:
+                     sync: bool = False, stamps: StampStore | None = None,
+                     fingerprint: str = '') -> GenerationReport:
     """Write the package of a plan into out_dir.
 
     Everything is rendered and checked before the first file is written, so
@@ -99,11 +101,14 @@ def generate_package(plan: PackagePlan, out_dir: Path, *,
 
     :param sync: make every file written durable (fsync, then each folder
       once): for output a user keeps, not for the build tree
+    :param stamps: where to record the generation, under the fingerprint
+      of its inputs (see :func:`unchanged_package`)
 
     :raises RobmosysError: if the user's code is missing or incomplete
     """
     problems: list[Diagnostic] = []
     outputs: dict[str, tuple[bytes, bool]] = {}
+    copied: dict[str, str] = {}
     for spec in plan.files:
         outputs[spec.path] = (render(spec.template, spec.context)
                               .encode('utf-8'), spec.executable)
@@ -122,14 +127,35 @@ def generate_package(plan: PackagePlan, out_dir: Path, *,
         problems += found
         if shows_skeleton and user_file.skeleton_path in outputs:
             skeletons.append(user_file.skeleton_path)
-        outputs[user_file.package_path] = (source.read_bytes(), False)
+        data = source.read_bytes()
+        outputs[user_file.package_path] = (data, False)
+        copied[str(source)] = digest(data)
     if problems:
         # an error that points at a skeleton finds it up to date
         for relative in skeletons:
             data, executable = outputs[relative]
             write_generated(out_dir / relative, data, executable=executable)
         raise RobmosysError(problems)
-    return _write_outputs(outputs, out_dir, sync=sync)
+    if stamps is None:
+        return _write_outputs(outputs, out_dir, sync=sync)
+    stamps.forget(out_dir)
+    report = _write_outputs(outputs, out_dir, sync=sync)
+    stamps.record(out_dir, fingerprint, [MANIFEST, *outputs], copied)
+    return report
+
+
+def unchanged_package(out_dir: Path, stamps: StampStore | None,
+                      fingerprint: str) -> GenerationReport | None:
+    """Return the report of a generation that would change nothing, if so.
+
+    :returns: None if the package has to be generated
+    """
+    if stamps is None:
+        return None
+    files = stamps.unchanged(out_dir, fingerprint)
+    if files is None:
+        return None
+    return GenerationReport(unchanged=[f for f in files if f.name != MANIFEST])
 
 
 def _write_outputs(outputs: dict[str, tuple[bytes, bool]], out_dir: Path,

@@ -480,16 +480,31 @@ def load_file(path: Path) -> LoadedFile:
 
     :raises RobmosysError: if the file cannot be read or parsed
     """
+    return load_bytes(read_model_bytes(path), path)
+
+
+def read_model_bytes(path: Path) -> bytes:
+    """Read a model file, unless it is too large to be a model.
+
+    :raises RobmosysError: if the file cannot be read or is too large
+    """
     try:
         size = path.stat().st_size
         if size > MAX_MODEL_BYTES:
             raise RobmosysError.in_file(
                 path, f'the model file has {size} bytes, more than the '
                 f'{MAX_MODEL_BYTES} a model may have')
-        raw = path.read_bytes()
+        return path.read_bytes()
     except OSError as exc:
         raise RobmosysError.in_file(
             path, f'cannot read the model file: {exc.strerror}') from None
+
+
+def load_bytes(raw: bytes, path: Path) -> LoadedFile:
+    """Decode and parse the content of a model file.
+
+    :raises RobmosysError: if it is not UTF-8 or cannot be parsed
+    """
     try:
         text = raw.decode('utf-8')
     except UnicodeDecodeError as exc:
