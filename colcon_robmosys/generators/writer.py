@@ -5,9 +5,9 @@
 
 from __future__ import annotations
 
+import itertools
 import os
 from pathlib import Path
-import itertools
 from typing import Iterable
 
 from colcon_robmosys.errors import RobmosysError
