@@ -138,14 +138,27 @@ class ComponentNode(LifecycleNode):
                 return GoalResponse.REJECT
             return GoalResponse.ACCEPT
 
+        def end_at_shutdown(goal_handle: Any, result: Any = None) -> Any:
+            # SIGINT or SIGTERM ended the context under the goal: its state
+            # ends here, quietly; telling the clients cannot work any more
+            try:
+                goal_handle.abort()
+            except Exception:  # noqa: B902 - the context is gone
+                pass
+            return action_type.Result() if result is None else result
+
         def execute(goal_handle: Any) -> Any:
             with run.lock:
                 try:
                     result = function(goal_handle)
                 except Exception:  # noqa: B902 - an activity failure must not stop the node
+                    if not self.context.ok():
+                        return end_at_shutdown(goal_handle)
                     self._activity_failed(activity)
                     goal_handle.abort()
                     return action_type.Result()
+            if not self.context.ok():
+                return end_at_shutdown(goal_handle, result)
             if goal_handle.is_active:
                 # the function left the end of the goal to us
                 if goal_handle.is_cancel_requested:
