@@ -16,13 +16,14 @@ from colcon_robmosys.check.types import TypeRules
 from colcon_robmosys.check.wiring import WiringRules
 from colcon_robmosys.errors import Diagnostic, RobmosysError
 from colcon_robmosys.model.build import FileBuilder
+from colcon_robmosys.model.build_base import MODEL_SECTIONS
 from colcon_robmosys.model.files import find_model_files, packages_of
 from colcon_robmosys.model.loader import load_file, LoadedFile
-from colcon_robmosys.model.schema import check_structure
+from colcon_robmosys.model.schema import structure_problems
 from colcon_robmosys.model.types import (
-    Component, ModelFile, ServiceDefinition, Workspace)
+    Component, ModelFile, ServiceDefinition, System, Workspace)
 
-__all__ = ['check_model_file', 'find_model_files', 'load_model_file',
+__all__ = ['check_model_file', 'FileCheck', 'find_model_files', 'load_model_file',
            'load_workspace', 'LoadResult', 'WorkspaceChecker']
 
 
@@ -60,31 +61,63 @@ class LoadResult:
             raise RobmosysError(self.errors)
 
 
+@dataclass(frozen=True)
+class FileCheck:
+    """What the rules of a single file found in it."""
+
+    #: the models that passed, whole
+    model_file: ModelFile
+    diagnostics: tuple[Diagnostic, ...]
+    #: the packages, with their kinds, of the models that did not pass
+    broken: tuple[tuple[str, str], ...]
+
+
 def load_model_file(path: Path) -> ModelFile:
     """Load and check a single file on its own.
 
     :raises RobmosysError: with every problem of the file
     """
-    return check_model_file(load_file(path))
+    checked = check_model_file(load_file(path))
+    if checked.diagnostics:
+        raise RobmosysError(checked.diagnostics)
+    return checked.model_file
 
 
-def check_model_file(loaded: LoadedFile) -> ModelFile:
-    """Check a loaded file on its own.
+def check_model_file(loaded: LoadedFile) -> FileCheck:
+    """Run the rules of a single file: the schema, then each model's own.
 
-    :raises RobmosysError: with every problem of the file
+    A model whose part of the file breaks a rule is left out; the others
+    are kept for the rules of the workspace, so that an error in one model
+    hides no error of another.
     """
-    problems = check_structure(loaded)
-    if problems:
-        raise RobmosysError(problems)
+    located = structure_problems(loaded)
+    diagnostics = [d for _, d in located]
+    everything = packages_of(loaded.data)
+    if any(len(p) < 2 or p[0] not in MODEL_SECTIONS for p, _ in located):
+        # the file as a whole (its version, its defaults) is broken
+        return FileCheck(ModelFile(str(loaded.path)), tuple(diagnostics),
+                         tuple(everything))
+    skip = frozenset((str(p[0]), int(p[1])) for p, _ in located)
     builder = FileBuilder(loaded)
-    model_file = builder.build()
-    problems = list(builder.diagnostics)
-    if not problems:
-        for component in model_file.components:
-            problems += activity_problems(component)
-    if problems:
-        raise RobmosysError(problems)
-    return model_file
+    models = builder.build_models(skip)
+    diagnostics += builder.diagnostics
+    broken = set(skip) | builder.broken_models
+    for key, model in models:
+        if isinstance(model, Component):
+            problems = activity_problems(model)
+            diagnostics += problems
+            if problems:
+                broken.add(key)
+    kept = [m for key, m in models if key not in broken]
+    kept_packages = {m.package for m in kept}
+    return FileCheck(
+        ModelFile(
+            str(loaded.path),
+            tuple(m for m in kept if isinstance(m, ServiceDefinition)),
+            tuple(m for m in kept if isinstance(m, Component)),
+            tuple(m for m in kept if isinstance(m, System))),
+        tuple(diagnostics),
+        tuple(p for p in everything if p[0] not in kept_packages))
 
 
 def load_workspace(paths: Iterable[Path],
@@ -104,12 +137,11 @@ def load_workspace(paths: Iterable[Path],
             diagnostics.extend(exc.diagnostics)
             broken[str(path)] = []
             continue
-        try:
-            files.append(check_model_file(loaded))
-        except RobmosysError as exc:
-            diagnostics.extend(exc.diagnostics)
-            # read once: a large file is slow to parse
-            broken[str(path)] = packages_of(loaded.data)
+        checked = check_model_file(loaded)
+        files.append(checked.model_file)
+        if checked.diagnostics:
+            diagnostics.extend(checked.diagnostics)
+            broken[str(path)] = list(checked.broken)
     checker = WorkspaceChecker(
         files, index or InterfaceIndex.from_environment(),
         (name for declared in broken.values() for name, _ in declared))

@@ -11,7 +11,7 @@ from colcon_robmosys.check.context import CheckContext
 from colcon_robmosys.check.qos import qos_incompatibility
 from colcon_robmosys.errors import Location
 from colcon_robmosys.mapping.names import connection_name, node_name
-from colcon_robmosys.model.build import parameter_value_problem
+from colcon_robmosys.model.parameters import parameter_value_problem
 from colcon_robmosys.model.types import (
     Component, Connection, Instance, Pattern, Port, PortRef, Role, System)
 

@@ -11,7 +11,7 @@ from typing import Any
 from colcon_robmosys.mapping.common import (
     Banner, banner_of, package_xml, PackageXml, unique)
 from colcon_robmosys.mapping.names import connection_name, node_name
-from colcon_robmosys.model.build import freeze_parameter_value
+from colcon_robmosys.model.parameters import freeze_parameter_value
 from colcon_robmosys.model.types import (
     Component, Connection, Instance, Pattern, PortRef, Role, System,
     Workspace)

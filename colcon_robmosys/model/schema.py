@@ -16,7 +16,7 @@ from jsonschema.exceptions import ValidationError
 from jsonschema.validators import extend
 
 from colcon_robmosys.errors import Diagnostic
-from colcon_robmosys.model.loader import LoadedFile
+from colcon_robmosys.model.loader import LoadedFile, NodePath
 
 SCHEMA_FILE = 'robmosys.schema.json'
 
@@ -168,6 +168,12 @@ def _leaves(error: ValidationError) -> Iterator[ValidationError]:
 
 def check_structure(loaded: LoadedFile) -> list[Diagnostic]:
     """Check a loaded file against the schema; return every problem."""
+    return [d for _, d in structure_problems(loaded)]
+
+
+def structure_problems(loaded: LoadedFile
+                       ) -> list[tuple[NodePath, Diagnostic]]:
+    """Check a loaded file against the schema; return every problem and its node."""
     diagnostics = []
     for error in _validator().iter_errors(loaded.data):
         for leaf in _leaves(error):
@@ -183,6 +189,6 @@ def check_structure(loaded: LoadedFile) -> list[Diagnostic]:
                 pass  # the path of the error is the key itself
             elif about_key:
                 path = tuple(path) + (leaf.instance,)
-            diagnostics.append(Diagnostic(
-                loaded.location(path, key=about_key), message))
+            diagnostics.append((tuple(path), Diagnostic(
+                loaded.location(path, key=about_key), message)))
     return diagnostics
