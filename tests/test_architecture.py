@@ -28,6 +28,14 @@ DEVTOOLS = ('devtools',)
 MAX_MODULE_LINES = 350
 MAX_TEMPLATE_LINES = 250
 
+#: Templates that hold code the robmosys_runtime package takes over (issue 11,
+#: the runtime part): until it does, they may not grow. Remove each entry as
+#: its template shrinks under MAX_TEMPLATE_LINES.
+RUNTIME_PENDING = {
+    'templates/component_cpp/ports.hpp.jinja': 567,
+    'templates/component_python/node.py.jinja': 536,
+}
+
 
 def _imports(path: Path) -> set[str]:
     """Return every module a source file imports, absolute names."""
@@ -138,7 +146,15 @@ def test_modules_are_small():
 
 
 def test_templates_are_small():
-    big = {str(p.relative_to(REPO)): n
-           for p in sorted((REPO / 'templates').rglob('*.jinja'))
-           if (n := len(p.read_text(encoding='utf-8').splitlines())) > MAX_TEMPLATE_LINES}
+    big = {}
+    for path in sorted((REPO / 'templates').rglob('*.jinja')):
+        name = str(path.relative_to(REPO))
+        lines = len(path.read_text(encoding='utf-8').splitlines())
+        if lines > RUNTIME_PENDING.get(name, MAX_TEMPLATE_LINES):
+            big[name] = lines
     assert big == {}
+    # an entry for a template that shrank is stale: remove it
+    for name, limit in RUNTIME_PENDING.items():
+        path = REPO / name
+        assert not path.exists() or \
+            len(path.read_text(encoding='utf-8').splitlines()) > MAX_TEMPLATE_LINES, name

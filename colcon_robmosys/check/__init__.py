@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Iterable
 
-from colcon_robmosys.check.activities import activity_problems
+from colcon_robmosys.check.activities import activity_problems, port_problems
 from colcon_robmosys.check.cycles import CycleRules
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.check.types import TypeRules
@@ -104,7 +104,7 @@ def check_model_file(loaded: LoadedFile) -> FileCheck:
     broken = set(skip) | builder.broken_models
     for key, model in models:
         if isinstance(model, Component):
-            problems = activity_problems(model)
+            problems = port_problems(model) + activity_problems(model)
             diagnostics += problems
             if problems:
                 broken.add(key)

@@ -5,10 +5,12 @@
 
 from __future__ import annotations
 
+from typing import Callable
+
 from colcon_robmosys.model.build_base import MODEL_SECTIONS
 from colcon_robmosys.model.build_components import ComponentBuilder
 from colcon_robmosys.model.build_definitions import DefinitionBuilder
-from colcon_robmosys.model.loader import NodePath
+from colcon_robmosys.model.loader import NodePath, RawData
 from colcon_robmosys.model.types import (
     Connection, Instance, Model, PortRef, System)
 
@@ -25,8 +27,9 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
         """Return the models of the file, each with its (section, index)."""
         data = self.loaded.data
         defaults = data.get('defaults', {})
-        builders = {'service_definitions': self._service_definition,
-                    'components': self._component, 'systems': self._system}
+        builders: dict[str, Callable[[NodePath, RawData, RawData], Model]] = {
+            'service_definitions': self._service_definition,
+            'components': self._component, 'systems': self._system}
         models: list[tuple[tuple[str, int], Model]] = []
         for section in MODEL_SECTIONS:
             for index, raw in enumerate(data.get(section, [])):
@@ -35,7 +38,7 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
                         (section, index), raw, defaults)))
         return models
 
-    def _system(self, path: NodePath, raw: dict, defaults: dict) -> System:
+    def _system(self, path: NodePath, raw: RawData, defaults: RawData) -> System:
         info = self._info(path, raw, defaults, 'system')
         name = raw.get('name') or _camel(info.name)
         if 'name' in raw:

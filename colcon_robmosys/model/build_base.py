@@ -9,7 +9,7 @@ from typing import Iterable
 
 from colcon_robmosys.errors import Diagnostic, Location
 from colcon_robmosys.model import names
-from colcon_robmosys.model.loader import LoadedFile, NodePath
+from colcon_robmosys.model.loader import LoadedFile, NodePath, RawData
 from colcon_robmosys.model.types import Maintainer, PackageInfo
 
 DEFAULT_VERSION = '0.1.0'
@@ -47,7 +47,7 @@ class BuilderBase:
 
     # package metadata ---------------------------------------------------
 
-    def _info(self, path: NodePath, raw: dict, defaults: dict,
+    def _info(self, path: NodePath, raw: RawData, defaults: RawData,
               kind: str) -> PackageInfo:
         name = raw['package']
         problem = names.package_problem(name)
@@ -61,12 +61,14 @@ class BuilderBase:
         if not license_:
             self.error(path, f"{kind} '{name}' lacks 'license' (set it in the "
                        "model or in the file's 'defaults')")
+        # the schema makes it a string
+        version: str = raw['version'] if 'version' in raw else \
+            defaults['version'] if 'version' in defaults else DEFAULT_VERSION
         return PackageInfo(
             name=name,
             description=raw.get('description', '').strip() or
             f'The {kind} {name}, generated from a RobMoSys model.',
-            version=raw.get('version', defaults.get('version',
-                                                    DEFAULT_VERSION)),
+            version=version,
             license=license_ or '',
             maintainers=tuple(Maintainer(m['name'], m['email'])
                               for m in maintainers or ()),

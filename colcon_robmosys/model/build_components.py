@@ -12,7 +12,7 @@ from colcon_robmosys.errors import Diagnostic, Location
 from colcon_robmosys.model import names
 from colcon_robmosys.model.build_base import BuilderBase, choices
 from colcon_robmosys.model.fieldtypes import parse_interface, TypeNameError
-from colcon_robmosys.model.loader import NodePath
+from colcon_robmosys.model.loader import NodePath, RawData
 from colcon_robmosys.model.parameters import (
     freeze_parameter_value, parameter_value_problem, PARAMETER_ZERO)
 from colcon_robmosys.model.types import (
@@ -23,8 +23,8 @@ from colcon_robmosys.model.types import (
 class ComponentBuilder(BuilderBase):
     """Components, with the rules a single component has to follow."""
 
-    def _component(self, path: NodePath, raw: dict,
-                   defaults: dict) -> Component:
+    def _component(self, path: NodePath, raw: RawData,
+                   defaults: RawData) -> Component:
         info = self._info(path, raw, defaults, 'component')
         name = raw['name']
         self.check_identifier(path + ('name',), 'component name', name)
@@ -95,7 +95,7 @@ class ComponentBuilder(BuilderBase):
             self.check_identifier(path + ('parameters', parameter.name),
                                   'parameter name', parameter.name)
 
-    def _port(self, path: NodePath, name: str, raw: dict) -> Port:
+    def _port(self, path: NodePath, name: str, raw: RawData) -> Port:
         self.check_identifier(path, 'port name', name)
         pattern, role = Pattern(raw['pattern']), Role(raw['role'])
         kind = PATTERN_INTERFACE[pattern]
@@ -105,18 +105,15 @@ class ComponentBuilder(BuilderBase):
             self.error(path + ('type',), f"port '{name}': {exc}")
             type_ = parse_interface(_strip_kind(raw['type']), kind)
         qos_raw = raw.get('qos', {})
-        if qos_raw and pattern in (Pattern.QUERY, Pattern.ACTION):
-            self.error(path + ('qos',), f"port '{name}': {pattern.value} ports "
-                       'use the QoS of ROS 2 services and actions; '
-                       "'qos' applies to push, send and event ports")
         qos = QoS(**{k.replace('-', '_'): v for k, v in qos_raw.items()})
         if qos.history == 'keep_all' and qos.depth is not None:
             self.error(path + ('qos', 'depth'), f"port '{name}': 'depth' has no "
                        "meaning with history 'keep_all'")
         return Port(name, pattern, role, type_, qos,
-                    raw.get('description', ''), self.at(path, key=True))
+                    raw.get('description', ''), self.at(path, key=True),
+                    self.at(path + ('qos',)) if qos_raw else None)
 
-    def _function(self, path: NodePath, name: str, raw: dict | None,
+    def _function(self, path: NodePath, name: str, raw: RawData | None,
                   language: Language) -> Function:
         self.check_identifier(path, 'function name', name)
         if name in names.NODE_MEMBERS:
@@ -149,7 +146,7 @@ class ComponentBuilder(BuilderBase):
                 f"function '{name}': Python syntax error in its code: "
                 f'{exc.msg}'))
 
-    def _parameter(self, path: NodePath, name: str, raw: dict) -> Parameter:
+    def _parameter(self, path: NodePath, name: str, raw: RawData) -> Parameter:
         type_name = raw['type']
         default = raw.get('default', PARAMETER_ZERO[type_name])
         if 'default' in raw:

@@ -9,7 +9,7 @@ from colcon_robmosys.model import names
 from colcon_robmosys.model.build_base import BuilderBase
 from colcon_robmosys.model.fieldtypes import (
     parse_field_type, TypeNameError, value_problem)
-from colcon_robmosys.model.loader import NodePath
+from colcon_robmosys.model.loader import NodePath, RawData
 from colcon_robmosys.model.types import (
     Action, CommunicationObject, Constant, Event, Field, FieldType, Query,
     ServiceDefinition, Structure)
@@ -18,8 +18,8 @@ from colcon_robmosys.model.types import (
 class DefinitionBuilder(BuilderBase):
     """Service definitions: communication objects, queries, actions, events."""
 
-    def _service_definition(self, path: NodePath, raw: dict,
-                            defaults: dict) -> ServiceDefinition:
+    def _service_definition(self, path: NodePath, raw: RawData,
+                            defaults: RawData) -> ServiceDefinition:
         info = self._info(path, raw, defaults, 'service definition')
         package = info.name
         seen: dict[str, str] = {}
@@ -95,7 +95,7 @@ class DefinitionBuilder(BuilderBase):
             self.error(path, f'{what}: {exc}')
             return None
 
-    def _structure(self, path: NodePath, raw: dict | None,
+    def _structure(self, path: NodePath, raw: RawData | None,
                    package: str) -> Structure:
         raw = raw or {}
         fields = []

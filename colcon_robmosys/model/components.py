@@ -6,7 +6,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Union
+from typing import Any, Union
 
 from colcon_robmosys.errors import Location
 from colcon_robmosys.model.base import (
@@ -39,6 +39,8 @@ class Port:
     qos: QoS
     description: str
     location: Location
+    #: where the model sets its QoS, if it does
+    qos_location: Location | None = None
 
 
 @dataclass(frozen=True)
@@ -66,7 +68,7 @@ class Function:
     location: Location
 
 
-ParameterValue = Union[bool, int, float, str, tuple, None]
+ParameterValue = Union[bool, int, float, str, tuple[Any, ...], None]
 
 
 @dataclass(frozen=True)

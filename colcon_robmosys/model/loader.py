@@ -17,6 +17,9 @@ from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
 #: A path into the loaded data: mapping keys and sequence indexes.
 NodePath = tuple[str | int, ...]
 
+#: A mapping of the loaded data, structurally checked by the schema.
+RawData = dict[str, Any]
+
 #: Model files larger than this are refused before parsing. PyYAML parses
 #: some 150 kB a second: a megabyte keeps the worst case to seconds, and is
 #: far more than a model of even a large package needs.
@@ -81,7 +84,7 @@ class _LimitedLoader(yaml.SafeLoader):
         self._depth += 1
         self._nodes += 1
         if self._depth > MAX_MODEL_DEPTH or self._nodes > MAX_MODEL_NODES:
-            mark = self.peek_event().start_mark
+            mark = self.peek_event().start_mark  # type: ignore[no-untyped-call]
             raise RobmosysError.at(
                 Location(str(self._path), mark.line + 1, mark.column + 1),
                 f'the model nests mappings and lists more than '

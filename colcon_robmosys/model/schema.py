@@ -32,7 +32,8 @@ def schema() -> dict[str, Any]:
     """Return the JSON Schema of robmosys.yaml files."""
     text = resources.files('colcon_robmosys.model').joinpath(
         SCHEMA_FILE).read_text(encoding='utf-8')
-    return json.loads(text)
+    loaded: dict[str, Any] = json.loads(text)
+    return loaded
 
 
 @lru_cache(maxsize=None)
@@ -73,7 +74,7 @@ def _describe(value: Any) -> str:
     return repr(value)
 
 
-def _subject(path: tuple) -> str:
+def _subject(path: tuple[Any, ...]) -> str:
     for depth in range(len(path) - 1, -1, -1):
         if isinstance(path[depth], str):
             if depth < len(path) - 1:
