@@ -10,6 +10,7 @@ error there, and a rule of the check.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 import re
 import shutil
@@ -27,7 +28,7 @@ from colcon_robmosys.mapping.component import plan_component
 from colcon_robmosys.model.build import FileBuilder
 from colcon_robmosys.model.files import packages_of
 from colcon_robmosys.model.loader import load_file
-from colcon_robmosys.model.types import Component
+from colcon_robmosys.model.types import Component, InterfaceKind
 from conftest import requires_ros, TEST_WORKSPACE
 from harness.fake_ament import EXAMPLE_EXTRA, fake_ament_index
 
@@ -143,3 +144,19 @@ def test_mapping_calls_what_the_check_let_through_an_internal_error(language: st
     assert diagnostic.location.path == str(path)
     assert (diagnostic.location.line, diagnostic.location.column) == (21, 7)
     assert diagnostic.message.startswith('internal error: ')
+
+
+def test_mapping_calls_a_port_it_cannot_map_an_internal_error(index: InterfaceIndex):
+    # the schema and the builder let no event port name a message type
+    result = load_workspace([MODELS / 'valid' / 'component_cpp.yaml',
+                             MODELS / 'valid' / 'service_definition.yaml'], index)
+    component = next(m for m in result.workspace.models if isinstance(m, Component))
+    port = component.ports[0]
+    broken = replace(component, ports=(replace(port, type=replace(
+        port.type, kind=InterfaceKind.SRV if port.type.kind is InterfaceKind.MSG
+        else InterfaceKind.MSG)),) + component.ports[1:])
+    with pytest.raises(RobmosysError) as error:
+        plan_component(broken)
+    (diagnostic,) = error.value.diagnostics
+    assert diagnostic.location == port.location
+    assert diagnostic.message.startswith(f"internal error: port '{port.name}'")
