@@ -46,6 +46,12 @@ def index(tmp_path_factory) -> InterfaceIndex:
 
 
 @pytest.fixture(scope='module')
+def corpus_domain_id() -> int:
+    """Return one domain id for every colcon run of the corpus (none starts a node)."""
+    return ros_env.free_domain_id()
+
+
+@pytest.fixture(scope='module')
 def corpus_prefix(tmp_path_factory) -> Path:
     """Return the fake ament prefix the corpus is written against."""
     prefix = tmp_path_factory.mktemp('corpus_prefix')
@@ -53,9 +59,9 @@ def corpus_prefix(tmp_path_factory) -> Path:
     return prefix
 
 
-def _colcon(args: list[str], root: Path, prefix: Path) -> str:
+def _colcon(args: list[str], root: Path, prefix: Path, domain_id: int) -> str:
     """Run colcon where the interfaces installed are those of the corpus."""
-    env = ros_env.loopback_env(ros_env.free_domain_id())
+    env = ros_env.loopback_env(domain_id)
     env['AMENT_PREFIX_PATH'] = str(prefix)
     result = ros_env.run(
         [str(Path(sys.prefix) / 'bin' / 'colcon'), '--log-base', str(root / 'log'),
@@ -83,7 +89,8 @@ def _diagnostics(output: str) -> set[str]:
 @pytest.mark.integration
 @pytest.mark.parametrize('case', INVALID, ids=[p.stem for p in INVALID])
 def test_validate_only_reports_what_build_reports(case: Path, tmp_path: Path,
-                                                  corpus_prefix: Path):
+                                                  corpus_prefix: Path,
+                                                  corpus_domain_id: int):
     root = _workspace(case, tmp_path)
     # the valid models loaded with a case build fine: select the case's own
     try:
@@ -92,9 +99,11 @@ def test_validate_only_reports_what_build_reports(case: Path, tmp_path: Path,
         selected = []
     selection = ['--packages-select', *(selected or ['model0'])]
     validate = _diagnostics(_colcon(
-        ['robmosys-generate', '--validate-only', *selection], root, corpus_prefix))
+        ['robmosys-generate', '--validate-only', *selection], root, corpus_prefix,
+        corpus_domain_id))
     built = _diagnostics(_colcon(
-        ['build', '--continue-on-error', *selection], root, corpus_prefix))
+        ['build', '--continue-on-error', *selection], root, corpus_prefix,
+        corpus_domain_id))
     assert validate
     assert {d for d in validate if ': error: ' in d} == \
         {d for d in built if ': error: ' in d}
