@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+import shutil
 import sys
 from typing import Any
 
@@ -24,6 +25,7 @@ from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.generators import create_missing_user_files, generate_package
 from colcon_robmosys.generators import plan_package
+from colcon_robmosys.runtime import RUNTIME_PACKAGE, runtime_source
 
 GROUP = 10
 METADATA = {
@@ -168,7 +170,7 @@ def write_handwritten(models_src: Path, dest_src: Path) -> int:
     Creates the missing implementation files next to the models too, as
     ``colcon robmosys-generate`` does, so that models_src builds.
 
-    :returns: the number of packages written
+    :returns: the number of packages written, the runtime package included
     """
     result = load_workspace(find_model_files([models_src]), ros_index())
     result.raise_errors()
@@ -178,4 +180,8 @@ def write_handwritten(models_src: Path, dest_src: Path) -> int:
         create_missing_user_files(plan)
         generate_package(plan, dest_src / model.package)
         count += 1
-    return count
+    # the runtime the generated components use, as a package of its own: a
+    # team would vendor it, as colcon-robmosys adds it to the models' workspace
+    shutil.copytree(runtime_source(), dest_src / RUNTIME_PACKAGE,
+                    ignore=shutil.ignore_patterns('__pycache__'))
+    return count + 1

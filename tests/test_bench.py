@@ -52,8 +52,8 @@ def test_synthetic_workspace_is_valid_and_generates(tmp_path):
 
 def test_handwritten_copy_has_the_generated_packages(tmp_path):
     synthetic.write_workspace(tmp_path / 'models', 2, own_messages=False)
-    assert synthetic.write_handwritten(tmp_path / 'models', tmp_path / 'hand') == 3
-    for package in ('bench_g0_c0', 'bench_g0_c1', 'bench_g0_system'):
+    assert synthetic.write_handwritten(tmp_path / 'models', tmp_path / 'hand') == 4
+    for package in ('bench_g0_c0', 'bench_g0_c1', 'bench_g0_system', 'robmosys_runtime'):
         assert (tmp_path / 'hand' / package / 'package.xml').is_file()
         assert not (tmp_path / 'hand' / package / 'robmosys.yaml').exists()
 
@@ -72,7 +72,8 @@ def test_generation_benchmark_prints_ratios(capsys):
 def test_colcon_benchmark_prints_ratios(capsys):
     assert bench_colcon.main(['--list-size', '2', '--build-size', '0', '--repeat', '1']) == 0
     out = capsys.readouterr().out
-    assert re.search(rf'^\| colcon list \(2 components\) +\| 4 +\| 1 .* {RATIO} *\|$', out,
+    # 4 packages of models, and robmosys_runtime
+    assert re.search(rf'^\| colcon list \(2 components\) +\| 5 +\| 1 .* {RATIO} *\|$', out,
                      re.MULTILINE), out
 
 

@@ -57,6 +57,7 @@ def test_colcon_list_shows_one_package_per_model(workspace):
         ('examples_system', '(robmosys.system)'),
         ('fibonacci_client', '(robmosys.component)'),
         ('fibonacci_server', '(robmosys.component)'),
+        ('hand_level_sensor', '(ros.ament_cmake)'),
         ('level_sensor', '(robmosys.component)'),
         ('level_watcher', '(robmosys.component)'),
         ('map_tools', '(ros.ament_cmake)'),
@@ -64,6 +65,8 @@ def test_colcon_list_shows_one_package_per_model(workspace):
         ('publisher', '(robmosys.component)'),
         ('pubsub_system', '(robmosys.system)'),
         ('receiver', '(robmosys.component)'),
+        # added from colcon-robmosys's own package data: no underlay has it
+        ('robmosys_runtime', '(ros.ament_cmake)'),
         ('sender', '(robmosys.component)'),
         ('simple_msgs', '(robmosys.interfaces)'),
         ('subscriber', '(robmosys.component)'),
@@ -78,7 +81,10 @@ def test_colcon_orders_generated_packages_like_any_other(workspace):
     assert order.index('simple_msgs') < order.index('map_tools')
     selected = colcon(['list', '--names-only', '--packages-up-to', 'subscriber'],
                       cwd=workspace).stdout.split()
-    assert sorted(selected) == ['simple_msgs', 'subscriber']
+    assert sorted(selected) == ['robmosys_runtime', 'simple_msgs', 'subscriber']
+    assert order.index('robmosys_runtime') < order.index('subscriber')
+    assert order.index('robmosys_runtime') < order.index('hand_level_sensor')
+    assert order.index('example_msgs') < order.index('hand_level_sensor')
 
 
 def test_listing_writes_nothing(workspace):

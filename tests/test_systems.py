@@ -262,8 +262,9 @@ def test_warnings_are_told_by_the_verb_and_the_build_without_failing(
     result = colcon(['robmosys-generate', '--validate-only'], cwd=unwired)
     assert result.returncode == 0, result.stderr
     assert result.stderr.splitlines().count(_warning_line(unwired)) == 1
-    # the components it launches, built once for the session
-    for package in {i.component for i in _system('dummy_robot_bringup').instances}:
+    # the components it launches, built once for the session, and the runtime they use
+    for package in {i.component for i in _system('dummy_robot_bringup').instances} | {
+            'robmosys_runtime'}:
         shutil.copytree(test_workspace_built.install / package, unwired / 'install' / package,
                         symlinks=True)
     # like a compiler's warning: in the package's stderr, the build goes on

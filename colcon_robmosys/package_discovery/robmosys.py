@@ -17,6 +17,9 @@ from colcon_robmosys.model.types import Language
 from colcon_robmosys.model.types import ServiceDefinition
 from colcon_robmosys.package_identification.robmosys import \
     RobmosysPackageIdentification
+from colcon_robmosys.runtime import installed_runtime
+from colcon_robmosys.runtime import RUNTIME_PACKAGE
+from colcon_robmosys.runtime import runtime_source
 
 logger = colcon_logger.getChild(__name__)
 
@@ -46,11 +49,12 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
         return None
 
     def discover(self, *, args, identification_extensions):  # noqa: D102
-        model_files = set()
+        model_files, runtime_folders = set(), set()
         for extensions_same_prio in identification_extensions.values():
             for extension in extensions_same_prio.values():
                 if isinstance(extension, RobmosysPackageIdentification):
                     model_files |= extension.model_files
+                    runtime_folders |= extension.runtime_folders
         if not model_files:
             return set()
         result = load_workspace(model_files)
@@ -67,6 +71,8 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
             kind = 'interfaces' if isinstance(model, ServiceDefinition) else \
                 'component' if isinstance(model, Component) else 'system'
             dependencies = model_dependencies(model)
+            if isinstance(model, Component):
+                dependencies += (RUNTIME_PACKAGE, )
             if isinstance(model, Component) and \
                     model.language is Language.CPP:
                 # built before, if the workspace builds rclcpp itself
@@ -81,7 +87,34 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
                     (Path(model_file).parent.name, 'invalid')]:
                 descriptors.add(
                     _descriptor(model_file, name, kind, (), result))
+        if not runtime_folders and _runtime_needed(args):
+            descriptors.add(_runtime_descriptor())
         return descriptors
+
+
+def _runtime_needed(args):
+    """Return whether no underlay provides robmosys_runtime.
+
+    The install folder of this workspace is no underlay: the runtime it holds
+    is this workspace's own build of our package data, rebuilt with it.
+    """
+    install_base = Path(getattr(args, 'install_base', None) or 'install')
+    provider = installed_runtime(ignored=[install_base])
+    if provider is not None:
+        logger.debug(f"'{RUNTIME_PACKAGE}' is provided by '{provider}'")
+    return provider is None
+
+
+def _runtime_descriptor():
+    """Return the descriptor of the runtime package of our package data.
+
+    It is an ordinary ament_cmake package: colcon-ros reads its package.xml
+    (its dependencies) and builds and tests it.
+    """
+    desc = PackageDescriptor(runtime_source())
+    desc.type = 'ros.ament_cmake'
+    desc.name = RUNTIME_PACKAGE
+    return desc
 
 
 def _descriptor(model_file, name, kind, dependencies, result):

@@ -9,6 +9,7 @@ from colcon_core.package_identification import \
 from colcon_core.plugin_system import satisfies_version
 
 from colcon_robmosys.model.files import MODEL_FILE_NAME
+from colcon_robmosys.runtime import names_runtime
 
 
 class RobmosysPackageIdentification(PackageIdentificationExtensionPoint):
@@ -29,6 +30,9 @@ class RobmosysPackageIdentification(PackageIdentificationExtensionPoint):
             PackageIdentificationExtensionPoint.EXTENSION_POINT_VERSION,
             '^1.0')
         self.model_files = set()
+        # folders of the workspace that hold robmosys_runtime itself: then
+        # discovery does not add the copy of our package data
+        self.runtime_folders = set()
 
     def identify(self, metadata):  # noqa: D102
         if metadata.type is not None and \
@@ -36,6 +40,8 @@ class RobmosysPackageIdentification(PackageIdentificationExtensionPoint):
             return
         model_file = Path(metadata.path) / MODEL_FILE_NAME
         if not model_file.is_file():
+            if names_runtime(Path(metadata.path) / 'package.xml'):
+                self.runtime_folders.add(Path(metadata.path).resolve())
             return
         self.model_files.add(model_file.resolve())
         # the folder belongs to the model: the user's implementation files

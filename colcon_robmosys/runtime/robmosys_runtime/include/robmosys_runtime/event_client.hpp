@@ -1,0 +1,234 @@
+// Copyright 2026 The colcon-robmosys authors
+// Licensed under the Apache License, Version 2.0
+
+/// \file The client of an event port, over a ROS 2 action.
+
+#ifndef ROBMOSYS_RUNTIME__EVENT_CLIENT_HPP_
+#define ROBMOSYS_RUNTIME__EVENT_CLIENT_HPP_
+
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rclcpp/rclcpp.hpp"
+#include "rclcpp_action/rclcpp_action.hpp"
+
+#include "robmosys_runtime/message_copy.hpp"
+
+namespace robmosys_runtime
+{
+
+/// An activation of an event by a required event port.
+template<typename ActionT>
+struct EventActivation
+{
+  explicit EventActivation(bool single_activation)
+  : single(single_activation)
+  {
+  }
+
+  /// The first event ends the activation.
+  const bool single;
+  /// How many events of this activation ran the activity.
+  std::atomic<size_t> events{0};
+  /// Deactivated, ended by its single event, refused or aborted.
+  std::atomic<bool> ended{false};
+  /// The goal, once the server accepted the activation.
+  typename rclcpp_action::ClientGoalHandle<ActionT>::SharedPtr goal_handle;
+};
+
+/// A required event port: an action client whose goals are activations.
+/**
+ * Each event of an activation runs the activity the port triggers; deactivating
+ * cancels the goal.
+ */
+template<typename ActionT>
+class EventClient
+{
+public:
+  using Goal = typename ActionT::Goal;
+  using Event = typename ActionT::Feedback;
+  using Activation = EventActivation<ActionT>;
+  using GoalHandle = rclcpp_action::ClientGoalHandle<ActionT>;
+  using EventCallback = std::function<void (const Event &)>;
+
+  /// Use the event port name of a node (an rclcpp::Node or a LifecycleNode).
+  /**
+   * \param on_event what each event of an activation runs (nullptr: nothing)
+   * \param group the callback group of the action client (nullptr: the node's default)
+   */
+  template<typename NodeT>
+  EventClient(
+    NodeT * node, const std::string & name, const rclcpp::QoS & qos,
+    EventCallback on_event = nullptr, rclcpp::CallbackGroup::SharedPtr group = nullptr)
+  : state_(std::make_shared<State>())
+  {
+    state_->logger = node->get_logger().get_child(name);
+    state_->on_event = std::move(on_event);
+    rcl_action_client_options_t options = rcl_action_client_get_default_options();
+    options.feedback_topic_qos = qos.get_rmw_qos_profile();
+    state_->client = rclcpp_action::create_client<ActionT>(node, name, group, options);
+  }
+
+  /// Deactivate every activation.
+  ~EventClient()
+  {
+    std::vector<std::shared_ptr<Activation>> activations;
+    {
+      std::lock_guard<std::mutex> lock(state_->mutex);
+      activations = state_->activations;
+    }
+    for (const auto & activation : activations) {
+      deactivate(activation);
+    }
+    std::lock_guard<std::mutex> lock(state_->mutex);
+    for (const auto & activation : state_->activations) {
+      activation->goal_handle.reset();
+    }
+    state_->activations.clear();
+  }
+
+  /// Wait until the event server is there, at most timeout; return whether it is.
+  bool wait_for_server(std::chrono::nanoseconds timeout)
+  {
+    return state_->client->wait_for_action_server(timeout);
+  }
+
+  /// Activate the event; with single, its first event ends the activation.
+  /**
+   * \throws std::invalid_argument if single is asked of an event without the field
+   */
+  std::shared_ptr<Activation> activate(Goal activation, bool single = false)
+  {
+    set_single(activation, single);
+    auto handle = std::make_shared<Activation>(single);
+    {
+      std::lock_guard<std::mutex> lock(state_->mutex);
+      state_->activations.push_back(handle);
+    }
+    // the goal handle keeps these callbacks and the activation keeps the goal
+    // handle: weak references break the cycle
+    std::weak_ptr<State> weak_state = state_;
+    std::weak_ptr<Activation> weak_handle = handle;
+    typename rclcpp_action::Client<ActionT>::SendGoalOptions options;
+    options.goal_response_callback = [weak_state, weak_handle](
+      typename GoalHandle::SharedPtr goal) {
+        auto state = weak_state.lock();
+        if (state) {
+          accepted(state, weak_handle.lock(), goal);
+        }
+      };
+    options.feedback_callback = [weak_state, weak_handle](
+      typename GoalHandle::SharedPtr, const std::shared_ptr<const Event> event) {
+        auto state = weak_state.lock();
+        auto handle = weak_handle.lock();
+        if (state && handle) {
+          notify(state, handle, *event, false);
+        }
+      };
+    options.result_callback = [weak_state, weak_handle](
+      const typename GoalHandle::WrappedResult & result) {
+        auto state = weak_state.lock();
+        auto handle = weak_handle.lock();
+        if (!state || !handle) {
+          return;
+        }
+        if (handle->single && result.code == rclcpp_action::ResultCode::SUCCEEDED &&
+          result.result)
+        {
+          // the event that ended a single activation is its result too, if its feedback was lost
+          notify(state, handle, convert<typename ActionT::Result, Event>(*result.result), true);
+        }
+        handle->ended = true;
+      };
+    state_->client->async_send_goal(activation, options);
+    return handle;
+  }
+
+  /// End an activation: none of its events runs the activity any more.
+  void deactivate(const std::shared_ptr<Activation> & handle)
+  {
+    typename GoalHandle::SharedPtr goal;
+    {
+      std::lock_guard<std::mutex> lock(state_->mutex);
+      if (!handle->ended.exchange(true)) {
+        goal = handle->goal_handle;
+      }
+    }
+    if (goal) {
+      state_->client->async_cancel_goal(goal);
+    }
+  }
+
+  /// Return the rclcpp_action client, for what this class does not offer.
+  typename rclcpp_action::Client<ActionT>::SharedPtr client() const
+  {
+    return state_->client;
+  }
+
+private:
+  /// What the client's callbacks share with this port, which may go first.
+  struct State
+  {
+    std::mutex mutex;
+    rclcpp::Logger logger = rclcpp::get_logger("event");
+    EventCallback on_event;
+    typename rclcpp_action::Client<ActionT>::SharedPtr client;
+    std::vector<std::shared_ptr<Activation>> activations;
+  };
+
+  static void accepted(
+    const std::shared_ptr<State> & state, const std::shared_ptr<Activation> & handle,
+    typename GoalHandle::SharedPtr goal)
+  {
+    if (!goal) {
+      RCLCPP_WARN(state->logger, "an activation was refused");
+      if (handle) {
+        handle->ended = true;
+      }
+      return;
+    }
+    if (!handle) {
+      // nobody holds the activation any more: it ends
+      state->client->async_cancel_goal(goal);
+      return;
+    }
+    bool ended;
+    {
+      std::lock_guard<std::mutex> lock(state->mutex);
+      handle->goal_handle = goal;
+      ended = handle->ended;
+    }
+    if (ended) {
+      state->client->async_cancel_goal(goal);
+    }
+  }
+
+  static void notify(
+    const std::shared_ptr<State> & state, const std::shared_ptr<Activation> & handle,
+    const Event & event, bool from_result)
+  {
+    {
+      std::lock_guard<std::mutex> lock(state->mutex);
+      if (handle->ended) {
+        return;
+      }
+      ++handle->events;
+      handle->ended = handle->single || from_result;
+    }
+    if (state->on_event) {
+      state->on_event(event);
+    }
+  }
+
+  std::shared_ptr<State> state_;
+};
+
+}  // namespace robmosys_runtime
+
+#endif  // ROBMOSYS_RUNTIME__EVENT_CLIENT_HPP_

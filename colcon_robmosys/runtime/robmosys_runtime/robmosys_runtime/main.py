@@ -1,0 +1,58 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""The process of a component: one node on a multi-threaded executor."""
+
+from __future__ import annotations
+
+import os
+import signal
+from types import FrameType
+from typing import Callable, List, Optional
+
+import rclpy
+from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
+from rclpy.node import Node
+
+
+def executor_threads() -> int:
+    """
+    Return how many threads the executor of a component has.
+
+    Threads to spare: a blocking call of an activity waits on one while the
+    answer arrives on another.
+    """
+    return max(4, os.cpu_count() or 1)
+
+
+def _exit_at_once(signum: int, frame: Optional[FrameType]) -> None:
+    # a second SIGINT or SIGTERM while the node ends (an activity or a goal
+    # still running): the user wants the process gone now
+    os._exit(128 + signum)
+
+
+def run(node_factory: Callable[[], Node], args: Optional[List[str]] = None) -> int:
+    """
+    Spin the node node_factory() until SIGINT or SIGTERM, then shut down cleanly.
+
+    Return the exit status of the process (0).
+    """
+    rclpy.init(args=args)
+    node = node_factory()
+    executor = MultiThreadedExecutor(num_threads=executor_threads())
+    executor.add_node(node)
+    try:
+        executor.spin()
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    except Exception:  # noqa: B902 - re-raised unless shutting down
+        # a callback that was running when SIGINT or SIGTERM shut the
+        # context down fails with it; that is the shutdown, not an error
+        if rclpy.ok():
+            raise
+    finally:
+        for signum in (signal.SIGINT, signal.SIGTERM):
+            signal.signal(signum, _exit_at_once)
+        executor.shutdown()
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return 0

@@ -1,0 +1,59 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""A real rclpy context and a multi-threaded executor spinning in a thread, per test."""
+
+import threading
+import time
+
+import pytest
+import rclpy
+from rclpy.executors import MultiThreadedExecutor
+
+
+class Spinning:
+    """The nodes of a test, spun by a multi-threaded executor in a thread."""
+
+    def __init__(self, context) -> None:
+        self.context = context
+        self.executor = MultiThreadedExecutor(num_threads=4, context=context)
+        self.nodes = []
+        self._thread = threading.Thread(target=self._spin, daemon=True)
+        self._thread.start()
+
+    def _spin(self) -> None:
+        try:
+            self.executor.spin()
+        except Exception:  # noqa: B902 - ends with the context
+            pass
+
+    def add(self, node):
+        """Spin a node; return it."""
+        self.nodes.append(node)
+        self.executor.add_node(node)
+        return node
+
+    def close(self) -> None:
+        self.executor.shutdown()
+        for node in self.nodes:
+            node.destroy_node()
+        rclpy.try_shutdown(context=self.context)
+        self._thread.join(10)
+
+
+def wait_until(condition, timeout: float = 10.0) -> bool:
+    """Wait until condition() holds, at most timeout seconds; return whether it did."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if condition():
+            return True
+        time.sleep(0.02)
+    return bool(condition())
+
+
+@pytest.fixture
+def spinning():
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    running = Spinning(context)
+    yield running
+    running.close()

@@ -1,0 +1,73 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""EventServer and EventClient over a real ROS 2 action (test_msgs/Fibonacci as the event)."""
+
+from conftest import wait_until
+import pytest
+from rclpy.node import Node
+from robmosys_runtime import EventClient, EventServer
+from test_msgs.action import Fibonacci
+
+
+def _pair(spinning, active=None, condition=None):
+    server_node = spinning.add(Node('sensor', context=spinning.context))
+    client_node = spinning.add(Node('watcher', context=spinning.context))
+    server = EventServer(server_node, Fibonacci, 'event', active=active, condition=condition)
+    events = []
+    client = EventClient(client_node, Fibonacci, 'event', on_event=events.append)
+    assert client.wait_for_server(timeout_sec=10)
+    return server, client, events
+
+
+def _event(value):
+    return Fibonacci.Feedback(sequence=[value])
+
+
+def test_events_reach_the_activations_whose_condition_holds(spinning):
+    server, client, events = _pair(
+        spinning, condition=lambda activation, event: event.sequence[0] >= activation.order)
+    high = client.activate(Fibonacci.Goal(order=10))
+    assert wait_until(lambda: server.activations == 1)
+    assert wait_until(lambda: high.goal_handle is not None)
+    assert server.fire(_event(3)) == 0
+    assert server.fire(_event(12)) == 1
+    assert wait_until(lambda: high.events == 1)
+    assert [list(e.sequence) for e in events] == [[12]]
+    client.deactivate(high)
+    assert high.ended
+    assert wait_until(lambda: server.activations == 0)
+    assert server.fire(_event(20)) == 0
+    client.destroy()
+    server.destroy()
+
+
+def test_an_inactive_server_refuses_activations(spinning):
+    server, client, events = _pair(spinning, active=lambda: False)
+    refused = client.activate(Fibonacci.Goal(order=1))
+    assert wait_until(lambda: refused.ended)
+    assert server.activations == 0
+    assert refused.events == 0
+
+
+def test_a_failing_condition_does_not_hold(spinning):
+    def broken(activation, event):
+        raise RuntimeError('broken condition')
+    server, client, events = _pair(spinning, condition=broken)
+    client.activate(Fibonacci.Goal(order=1))
+    assert wait_until(lambda: server.activations == 1)
+    assert server.fire(_event(1)) == 0
+    assert events == []
+
+
+def test_single_needs_a_single_field(spinning):
+    server, client, events = _pair(spinning)
+    with pytest.raises(ValueError, match='no single field'):
+        client.activate(Fibonacci.Goal(order=1), single=True)
+
+
+def test_destroying_the_server_ends_the_activations(spinning):
+    server, client, events = _pair(spinning)
+    handle = client.activate(Fibonacci.Goal(order=1))
+    assert wait_until(lambda: server.activations == 1)
+    server.destroy()
+    assert wait_until(lambda: handle.ended)

@@ -1,0 +1,88 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""QueryClient and ActionClientPort against real rclpy servers."""
+
+import threading
+
+from conftest import wait_until
+import pytest
+from rclpy.action import ActionServer
+from rclpy.node import Node
+from robmosys_runtime import ActionClientPort, QueryClient
+from test_msgs.action import Fibonacci
+from test_msgs.srv import BasicTypes
+
+
+def _serve(spinning):
+    server = spinning.add(Node('server', context=spinning.context))
+
+    def answer(request, response):
+        response.int32_value = request.int32_value + 1000
+        return response
+    server.create_service(BasicTypes, 'add', answer)
+
+    def execute(goal_handle):
+        sequence = [0, 1]
+        for _ in range(goal_handle.request.order - 1):
+            sequence.append(sequence[-1] + sequence[-2])
+            goal_handle.publish_feedback(Fibonacci.Feedback(sequence=sequence))
+        if goal_handle.request.order < 0:
+            goal_handle.abort()
+        else:
+            goal_handle.succeed()
+        return Fibonacci.Result(sequence=sequence)
+    ActionServer(server, Fibonacci, 'fibonacci', execute)
+    return server
+
+
+def test_query_client_blocking_and_asynchronous(spinning):
+    _serve(spinning)
+    client_node = spinning.add(Node('client', context=spinning.context))
+    answers = []
+    client = QueryClient(client_node, BasicTypes, 'add', answers.append)
+    assert client.wait_for_service(timeout_sec=10)
+    assert client.call(BasicTypes.Request(int32_value=5)).int32_value == 1005
+    client.call_async(BasicTypes.Request(int32_value=7))
+    assert wait_until(lambda: answers)
+    assert answers[0].int32_value == 1007
+    client.destroy()
+
+
+def test_query_client_times_out_without_server(spinning):
+    client_node = spinning.add(Node('client', context=spinning.context))
+    client = QueryClient(client_node, BasicTypes, 'nobody')
+    with pytest.raises(TimeoutError, match='no server of nobody'):
+        client.call(BasicTypes.Request(), timeout_sec=0.2)
+
+
+def test_action_client_blocking_asynchronous_and_feedback(spinning):
+    _serve(spinning)
+    client_node = spinning.add(Node('client', context=spinning.context))
+    results, feedback = [], []
+    client = ActionClientPort(client_node, Fibonacci, 'fibonacci', results.append)
+    assert client.wait_for_server(timeout_sec=10)
+    result = client.send_goal(Fibonacci.Goal(order=5),
+                              feedback_callback=lambda m: feedback.append(m))
+    assert list(result.sequence) == [0, 1, 1, 2, 3, 5]
+    assert feedback
+    client.send_goal_async(Fibonacci.Goal(order=3))
+    assert wait_until(lambda: results)
+    assert list(results[0].sequence) == [0, 1, 1, 2]
+    client.destroy()
+
+
+def test_blocking_calls_from_a_callback_of_the_executor(spinning):
+    """A blocking call inside a callback is answered by another thread of the executor."""
+    _serve(spinning)
+    client_node = spinning.add(Node('caller', context=spinning.context))
+    client = QueryClient(client_node, BasicTypes, 'add')
+    got = []
+    done = threading.Event()
+
+    def tick():
+        timer.cancel()
+        got.append(client.call(BasicTypes.Request(int32_value=1)).int32_value)
+        done.set()
+    timer = client_node.create_timer(0.05, tick)
+    assert done.wait(10)
+    assert got == [1001]

@@ -1,0 +1,311 @@
+// Copyright 2026 The colcon-robmosys authors
+// Licensed under the Apache License, Version 2.0
+
+#include <atomic>
+#include <cstdio>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "rclcpp/rclcpp.hpp"
+#include "rclcpp_action/rclcpp_action.hpp"
+#include "std_msgs/msg/int32.hpp"
+#include "test_msgs/action/fibonacci.hpp"
+#include "test_msgs/srv/basic_types.hpp"
+
+#include "robmosys_runtime/action_client.hpp"
+#include "robmosys_runtime/component_node.hpp"
+#include "robmosys_runtime/event_client.hpp"
+#include "robmosys_runtime/event_server.hpp"
+#include "robmosys_runtime/main.hpp"
+#include "robmosys_runtime/query_client.hpp"
+
+using namespace std::chrono_literals;
+using Fibonacci = test_msgs::action::Fibonacci;
+using BasicTypes = test_msgs::srv::BasicTypes;
+
+namespace
+{
+
+int failures = 0;
+
+/// Count a failed check, and tell where it is (the test goes on, like EXPECT_TRUE).
+void check(bool holds, const char * what, int line)
+{
+  if (!holds) {
+    std::fprintf(stderr, "test_runtime.cpp:%d: check failed: %s\n", line, what);
+    ++failures;
+  }
+}
+
+#define EXPECT(condition) check((condition), #condition, __LINE__)
+
+bool wait_until(const std::function<bool()> & condition, std::chrono::milliseconds timeout = 10s)
+{
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (condition()) {
+      return true;
+    }
+    std::this_thread::sleep_for(20ms);
+  }
+  return condition();
+}
+
+/// rclcpp, and an executor spinning in a thread, for one test.
+class Runtime
+{
+public:
+  Runtime()
+  {
+    rclcpp::init(0, nullptr);
+    executor_ = std::make_shared<rclcpp::executors::MultiThreadedExecutor>(
+      rclcpp::ExecutorOptions(), 4);
+  }
+
+  ~Runtime()
+  {
+    stop();
+    executor_.reset();
+    rclcpp::shutdown();
+  }
+
+  /// Stop spinning, before the nodes and ports of a test go.
+  void stop()
+  {
+    executor_->cancel();
+    if (spinner_.joinable()) {
+      spinner_.join();
+    }
+  }
+
+  Runtime(const Runtime &) = delete;
+  Runtime & operator=(const Runtime &) = delete;
+
+  template<typename NodeT>
+  void spin(const std::shared_ptr<NodeT> & node)
+  {
+    executor_->add_node(node->get_node_base_interface());
+  }
+
+  void start()
+  {
+    spinner_ = std::thread([this]() {executor_->spin();});
+  }
+
+private:
+  std::shared_ptr<rclcpp::executors::MultiThreadedExecutor> executor_;
+  std::thread spinner_;
+};
+
+/// A component that counts periodically and publishes the count.
+class Counter : public robmosys_runtime::ComponentNode
+{
+public:
+  Counter()
+  : ComponentNode("counter", rclcpp::NodeOptions())
+  {
+    add_activity("Tick");
+    add_activity("Answer");
+    set_lifecycle(
+      "on_configure", [this]() {
+        if (fail_configure) {
+          throw std::runtime_error("the set-up fails");
+        }
+      });
+  }
+
+  ~Counter() override
+  {
+    release();
+  }
+
+  std::atomic<bool> fail_configure{false};
+  std::atomic<int> count{0};
+  std::shared_ptr<rclcpp_lifecycle::LifecyclePublisher<std_msgs::msg::Int32>> pCount;
+  rclcpp::Service<BasicTypes>::SharedPtr qDouble;
+  rclcpp::Subscription<std_msgs::msg::Int32>::SharedPtr sCount;
+  std::atomic<int> received{0};
+
+protected:
+  void create_ports() override
+  {
+    keep_publisher(pCount, create_publisher<std_msgs::msg::Int32>("pCount", 10));
+    rclcpp::SubscriptionOptions options;
+    options.callback_group = activity("Answer");
+    keep(
+      sCount, create_subscription<std_msgs::msg::Int32>(
+        "pCount", 10, in_activity<const std_msgs::msg::Int32 &>(
+          "Answer", [this](const std_msgs::msg::Int32 & message) {received = message.data;}),
+        options));
+    keep(
+      qDouble, create_query_server<BasicTypes>(
+        "qDouble", "Answer",
+        [](const BasicTypes::Request & request, BasicTypes::Response & response) {
+          response.int32_value = 2 * request.int32_value;
+        }));
+    add_periodic(
+      "Tick", 20ms, [this]() {
+        std_msgs::msg::Int32 message;
+        message.data = ++count;
+        pCount->publish(message);
+        if (count == 2) {
+          throw std::runtime_error("the second tick fails");
+        }
+      });
+  }
+};
+
+}  // namespace
+
+void query_client()
+{
+  Runtime runtime;
+  auto server = std::make_shared<rclcpp::Node>("server");
+  auto service = server->create_service<BasicTypes>(
+    "add", [](
+      const std::shared_ptr<BasicTypes::Request> request,
+      std::shared_ptr<BasicTypes::Response> response) {
+      response->int32_value = request->int32_value + 1000;
+    });
+  auto client_node = std::make_shared<rclcpp::Node>("client");
+  auto group = client_node->create_callback_group(rclcpp::CallbackGroupType::MutuallyExclusive);
+  std::atomic<int> answered{0};
+  robmosys_runtime::QueryClient<BasicTypes> query(
+    client_node->create_client<BasicTypes>("add", rclcpp::ServicesQoS(), group),
+    [&answered](const BasicTypes::Response & response) {answered = response.int32_value;});
+  runtime.spin(server);
+  runtime.spin(client_node);
+  runtime.start();
+  EXPECT(query.wait_for_service(10s));
+  BasicTypes::Request request;
+  request.int32_value = 5;
+  EXPECT(query.call(request)->int32_value == 1005);
+  request.int32_value = 7;
+  query.call_async(request);
+  EXPECT(wait_until([&answered]() {return answered == 1007;}));
+  runtime.stop();
+}
+
+void events_reach_the_activations_whose_condition_holds()
+{
+  Runtime runtime;
+  auto sensor = std::make_shared<rclcpp::Node>("sensor");
+  auto watcher = std::make_shared<rclcpp::Node>("watcher");
+  robmosys_runtime::EventServer<Fibonacci> server(
+    sensor.get(), "event", rclcpp::QoS(10), nullptr,
+    [](const Fibonacci::Goal & activation, const Fibonacci::Feedback & event) {
+      return event.sequence.at(0) >= activation.order;
+    });
+  std::atomic<int> events{0};
+  robmosys_runtime::EventClient<Fibonacci> client(
+    watcher.get(), "event", rclcpp::QoS(10),
+    [&events](const Fibonacci::Feedback &) {++events;});
+  runtime.spin(sensor);
+  runtime.spin(watcher);
+  runtime.start();
+  EXPECT(client.wait_for_server(10s));
+  Fibonacci::Goal activation;
+  activation.order = 10;
+  auto handle = client.activate(activation);
+  EXPECT(wait_until([&handle]() {return static_cast<bool>(handle->goal_handle);}));
+  Fibonacci::Feedback low, high;
+  low.sequence = {3};
+  high.sequence = {12};
+  EXPECT(server.fire(low) == 0u);
+  EXPECT(server.fire(high) == 1u);
+  EXPECT(wait_until([&events]() {return events == 1;}));
+  bool refused = false;
+  try {
+    client.activate(activation, true);
+  } catch (const std::invalid_argument &) {
+    refused = true;
+  }
+  EXPECT(refused);
+  client.deactivate(handle);
+  EXPECT(handle->ended);
+  runtime.stop();
+}
+
+void component_ports_live_from_configure_to_cleanup()
+{
+  Runtime runtime;
+  auto node = std::make_shared<Counter>();
+  runtime.spin(node);
+  runtime.start();
+  EXPECT(node->pCount == nullptr);
+  EXPECT(node->configure().id() == lifecycle_msgs::msg::State::PRIMARY_STATE_INACTIVE);
+  EXPECT(node->pCount != nullptr);
+  std::this_thread::sleep_for(100ms);
+  EXPECT(node->count == 0);  // inactive: the timer does not run
+  node->activate();
+  EXPECT(node->is_active());
+  EXPECT(wait_until([&node]() {return node->count >= 4;}));  // a failing tick went on
+  EXPECT(wait_until([&node]() {return node->received >= 3;}));
+  node->deactivate();
+  const int stopped = node->count;
+  std::this_thread::sleep_for(100ms);
+  EXPECT(node->count <= stopped + 1);
+  node->cleanup();
+  EXPECT(node->pCount == nullptr);
+  runtime.stop();
+}
+
+void queries_are_answered_while_active_only()
+{
+  Runtime runtime;
+  auto node = std::make_shared<Counter>();
+  auto asker = std::make_shared<rclcpp::Node>("asker");
+  robmosys_runtime::QueryClient<BasicTypes> query(asker->create_client<BasicTypes>("qDouble"));
+  runtime.spin(node);
+  runtime.spin(asker);
+  runtime.start();
+  node->configure();
+  EXPECT(query.wait_for_service(10s));
+  // the service is there; its answers may reach the client a moment later
+  std::this_thread::sleep_for(500ms);
+  BasicTypes::Request request;
+  request.int32_value = 21;
+  EXPECT(query.call(request)->int32_value == 0);  // inactive: the default response
+  node->activate();
+  EXPECT(query.call(request)->int32_value == 42);
+  query.call_async(request);  // no callback: nothing runs
+  node->deactivate();
+  node->cleanup();
+  EXPECT(node->qDouble == nullptr);
+  runtime.stop();
+}
+
+void a_throwing_hook_fails_its_transition()
+{
+  Runtime runtime;
+  auto node = std::make_shared<Counter>();
+  node->fail_configure = true;
+  runtime.spin(node);
+  runtime.start();
+  EXPECT(node->configure().id() == lifecycle_msgs::msg::State::PRIMARY_STATE_UNCONFIGURED);
+  EXPECT(node->pCount == nullptr);
+  runtime.stop();
+}
+
+int main()
+{
+  for (const auto & test : std::vector<std::function<void()>>{
+    query_client, events_reach_the_activations_whose_condition_holds,
+    component_ports_live_from_configure_to_cleanup, queries_are_answered_while_active_only,
+    a_throwing_hook_fails_its_transition})
+  {
+    try {
+      test();
+    } catch (const std::exception & error) {
+      std::fprintf(stderr, "test_runtime.cpp: unexpected exception: %s\n", error.what());
+      ++failures;
+    }
+  }
+  std::fprintf(stderr, "%d check(s) failed\n", failures);
+  return failures == 0 ? 0 : 1;
+}
