@@ -24,6 +24,11 @@ GLUE = ('package_identification', 'package_discovery', 'task', 'verb')
 #: Tools for developers (tests, benchmarks, the demo): above everything,
 #: imported by nothing of the pipeline.
 DEVTOOLS = ('devtools',)
+#: The robmosys_runtime ament package as package data, and how the glue finds
+#: it: imports nothing of the pipeline, is imported by the glue only.
+RUNTIME = 'runtime'
+#: Sources of the ament package inside it: its own Python module, not ours.
+RUNTIME_PACKAGE = PACKAGE / RUNTIME / 'robmosys_runtime'
 
 MAX_MODULE_LINES = 350
 MAX_TEMPLATE_LINES = 250
@@ -66,6 +71,8 @@ def _package_graph() -> dict[str, set[str]]:
     """Return subpackage (or top-level module) -> those it imports."""
     graph: dict[str, set[str]] = {}
     for path in _sources(PACKAGE):
+        if RUNTIME_PACKAGE in path.parents:
+            continue
         own = _subpackage(path)
         targets = graph.setdefault(own, set())
         for module in _imports(path):
@@ -85,6 +92,9 @@ def test_layers_import_only_downwards():
     problems = []
     for own, targets in sorted(graph.items()):
         if own in GLUE or own in DEVTOOLS or own == '__init__':
+            continue
+        if own == RUNTIME:
+            assert targets <= {'errors'}, f'runtime imports {targets}'
             continue
         assert own in order, f'{own}: a subpackage of no layer (add it to LAYERS)'
         for target in sorted(targets):
@@ -115,14 +125,15 @@ def test_no_import_cycle_between_subpackages():
 def test_pipeline_is_not_importing_glue_or_devtools():
     graph = _package_graph()
     for own in LAYERS:
-        assert not graph.get(own, set()) & set(GLUE + DEVTOOLS), own
+        assert not graph.get(own, set()) & set(GLUE + DEVTOOLS + (RUNTIME,)), own
 
 
 def test_only_the_glue_imports_colcon():
+    colcon = ('colcon_core', 'colcon_ros', 'colcon_cmake')
     importers = sorted(
         str(path.relative_to(REPO)) for path in _sources(PACKAGE)
-        if any(m.split('.')[0] in ('colcon_core', 'colcon_ros', 'colcon_cmake')
-               for m in _imports(path)))
+        if RUNTIME_PACKAGE not in path.parents and
+        any(m.split('.')[0] in colcon for m in _imports(path)))
     assert importers, 'the glue imports colcon_core'
     assert [p for p in importers
             if Path(p).parts[1] not in GLUE] == []
