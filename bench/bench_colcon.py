@@ -7,9 +7,9 @@ Compares two workspaces that give colcon the same packages: one of robmosys mode
 out as ordinary ament_cmake packages (what a team would write by hand to get the
 same result). Measured in the same run, alternating the two workspaces:
 
-- ``colcon list`` on a workspace of ``--list-size`` components (with their service
-  definitions and systems): colcon's discovery, which for the models means loading
-  and validating every model;
+- ``colcon list`` and ``colcon graph`` on workspaces of ``--list-size`` components
+  (with their service definitions and systems): colcon's discovery, which for the
+  models means loading and validating every model (or reading the cache of a build);
 - a no-op ``colcon build`` (a build after a build, nothing changed) on a workspace of
   ``--build-size`` components that exchange std_msgs/msg/Header (so that no rosidl
   build makes the first builds take long): per package, the models are generated
@@ -81,8 +81,9 @@ def row(what: str, packages: int, times: dict[str, list[float]]) -> list[object]
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the benchmark and print its figures."""
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
-    parser.add_argument('--list-size', type=int, default=200,
-                        help='components of the colcon list workspace (default: 200)')
+    parser.add_argument('--list-size', type=int, nargs='+', default=[100, 1000],
+                        help='components of the colcon list and colcon graph '
+                        'workspaces (default: 100 1000)')
     parser.add_argument('--build-size', type=int, default=20,
                         help='components of the colcon build workspace, 0 to build '
                         'nothing (default: 20)')
@@ -95,14 +96,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     print_machine('colcon overhead: robmosys models vs the same packages written by hand')
     rows, spreads = [], []
     with tempfile.TemporaryDirectory(prefix='robmosys-bench-colcon-') as tmp:
-        roots = make_pair(Path(tmp) / 'list', args.list_size, own_messages=True)
-        names = {side: listed(root, args.timeout) for side, root in roots.items()}
-        if names['models'] != names['hand-written']:
-            raise RuntimeError(f'the two workspaces list different packages: {names}')
-        times = alternate(roots, args.repeat, ['list'], args.timeout)
-        rows.append(row(f'colcon list ({args.list_size} components)',
-                        len(names['models']), times))
-        spreads.append(('colcon list', times))
+        for size in args.list_size:
+            roots = make_pair(Path(tmp) / f'list{size}', size, own_messages=True)
+            names = {side: listed(root, args.timeout) for side, root in roots.items()}
+            if names['models'] != names['hand-written']:
+                raise RuntimeError(f'the two workspaces list different packages: {names}')
+            for verb in ('list', 'graph'):
+                times = alternate(roots, args.repeat, [verb], args.timeout)
+                rows.append(row(f'colcon {verb} ({size} components)',
+                                len(names['models']), times))
+                spreads.append((f'colcon {verb} ({size})', times))
 
         if args.build_size:
             roots = make_pair(Path(tmp) / 'build', args.build_size, own_messages=False)

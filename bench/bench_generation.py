@@ -24,15 +24,17 @@ import cProfile
 from dataclasses import dataclass, field
 from pathlib import Path
 import pstats
+import resource
 import tempfile
 import time
 from typing import Sequence
 
 from benchlib import print_end, print_machine, ratio, spread, table
-from colcon_robmosys.check import find_model_files, load_workspace
+from colcon_robmosys.check import find_model_files, load_workspace, ModelCache
+from colcon_robmosys.check.cache import CACHE_DIR
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.generators import create_missing_user_files, generate_package
-from colcon_robmosys.generators import plan_package
+from colcon_robmosys.generators import plan_package, StampStore, unchanged_package
 from synthetic import ros_index, write_workspace
 
 
@@ -63,16 +65,27 @@ def generate_workspace(src: Path, out: Path, index: InterfaceIndex) -> Phases:
     the user's missing implementation files, render and write the packages.
     """
     start, cpu_start = time.perf_counter(), time.process_time()
-    result = load_workspace(find_model_files([src]), index)
+    # as colcon build keeps them in build/
+    cache = ModelCache(out / CACHE_DIR)
+    stamps = StampStore(out / CACHE_DIR / 'stamps')
+    result = load_workspace(find_model_files([src]), index, cache)
     result.raise_errors()
     loaded = time.perf_counter()
     workspace = result.workspace
-    plans = [plan_package(workspace, model.package) for model in workspace.models]
-    planned = time.perf_counter()
+    todo = []
     written = unchanged = 0
-    for plan in plans:
+    for model in workspace.models:
+        fingerprint = result.fingerprint(model.package)
+        report = unchanged_package(out / model.package, stamps, fingerprint)
+        if report is None:
+            todo.append((plan_package(workspace, model.package), fingerprint))
+        else:
+            unchanged += len(report.unchanged)
+    planned = time.perf_counter()
+    for plan, fingerprint in todo:
         create_missing_user_files(plan)
-        report = generate_package(plan, out / plan.name)
+        report = generate_package(plan, out / plan.name, stamps=stamps,
+                                  fingerprint=fingerprint)
         written += len(report.written)
         unchanged += len(report.unchanged)
     done = time.perf_counter()
@@ -96,6 +109,10 @@ class Samples:
     again: list[Phases] = field(default_factory=list)
 
 
+#: Every CPP_EVERY-th component of the synthetic workspaces is a C++ one (0: none).
+CPP_EVERY = 5
+
+
 def measure_once(components: int, batch: int,
                  index: InterfaceIndex) -> tuple[int, Phases, Phases]:
     """Generate ``batch`` fresh workspaces of that many components: from nothing, then again.
@@ -106,7 +123,7 @@ def measure_once(components: int, batch: int,
     with tempfile.TemporaryDirectory(prefix='robmosys-bench-gen-') as tmp:
         roots = [Path(tmp) / str(b) for b in range(batch)]
         for root in roots:
-            shape = write_workspace(root / 'src', components)
+            shape = write_workspace(root / 'src', components, cpp_every=CPP_EVERY)
         first = _sum([generate_workspace(r / 'src', r / 'out', index) for r in roots])
         again = _sum([generate_workspace(r / 'src', r / 'out', index) for r in roots])
     if again.written:
@@ -168,6 +185,44 @@ def _table(results: list[Samples], which: str) -> str:
     return table(header, rows)
 
 
+#: The goals of issue 16 (P1), for the largest workspace.
+GOAL_FIRST_S = 2.0
+GOAL_AGAIN_S = 0.5
+GOAL_FLAT = 1.10
+GOAL_PEAK_MB = 300
+
+
+def goals(results: list[Samples]) -> list[str]:
+    """Return how the largest workspace fares against the goals, one line each."""
+    largest, smallest = results[-1], results[0]
+
+    def best(entry: Samples, which: str) -> Phases:
+        return min(getattr(entry, which), key=lambda p: p.total)
+
+    def met(ok: bool) -> str:
+        return 'met' if ok else 'NOT met'
+
+    first, again = best(largest, 'first'), best(largest, 'again')
+    per_large = first.total / (largest.components * largest.batch)
+    per_small = best(smallest, 'first').total / (smallest.components * smallest.batch)
+    flat = per_large / per_small
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    n = largest.components
+    return [
+        f'goals at N={n} (first and no-change generation: fastest sample, one workspace):',
+        f'  first generation: {first.total:.2f} s wall, {first.cpu:.2f} s CPU '
+        f'(goal < {GOAL_FIRST_S} s: wall {met(first.total < GOAL_FIRST_S)}, '
+        f'CPU {met(first.cpu < GOAL_FIRST_S)})',
+        f'  no-change generation: {again.total:.2f} s wall, {again.cpu:.2f} s CPU '
+        f'(goal < {GOAL_AGAIN_S} s: wall {met(again.total < GOAL_AGAIN_S)}, '
+        f'CPU {met(again.cpu < GOAL_AGAIN_S)})',
+        f'  time per component at N={n} / at N={smallest.components}: {flat:.2f}x '
+        f'(goal: flat, < {GOAL_FLAT:.2f}x: {met(flat < GOAL_FLAT)})',
+        f'  peak memory (max RSS of this process, every size): {peak:.0f} MB '
+        f'(goal < {GOAL_PEAK_MB} MB: {met(peak < GOAL_PEAK_MB)})',
+    ]
+
+
 def report(results: list[Samples]) -> str:
     """Return the figures and their ratios to the smallest workspace."""
     lines = ['first generation (from nothing; every file written):',
@@ -178,7 +233,7 @@ def report(results: list[Samples]) -> str:
     for entry in results:
         assert entry.first is not None
         lines.append(f'  N={entry.components}: {spread([p.total for p in entry.first])}')
-    return '\n'.join(lines)
+    return '\n'.join(lines + [''] + goals(results))
 
 
 def profile(components: int, limit: int = 30) -> None:
@@ -188,7 +243,7 @@ def profile(components: int, limit: int = 30) -> None:
     profiler = cProfile.Profile()
     with tempfile.TemporaryDirectory(prefix='robmosys-bench-gen-') as tmp:
         src, out = Path(tmp) / 'src', Path(tmp) / 'out'
-        write_workspace(src, components)
+        write_workspace(src, components, cpp_every=CPP_EVERY)
         profiler.runcall(generate_workspace, src, out, index)
     stats = pstats.Stats(profiler)
     stats.sort_stats('cumulative').print_stats(limit)
@@ -204,9 +259,13 @@ def main(argv: Sequence[str] | None = None) -> int:
                         help='samples per size; the fastest counts (default: 3)')
     parser.add_argument('--profile', type=int, metavar='N',
                         help='profile one generation of N components instead')
+    parser.add_argument('--cpp-every', type=int, default=CPP_EVERY,
+                        help='make every Nth component a C++ one, 0 for none '
+                        f'(default: {CPP_EVERY})')
     parser.add_argument('--tmpdir', type=Path,
                         help='where to write the workspaces (default: the system temp folder)')
     args = parser.parse_args(argv)
+    globals()['CPP_EVERY'] = args.cpp_every
     if args.tmpdir:
         tempfile.tempdir = str(args.tmpdir)
     if args.profile:

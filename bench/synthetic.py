@@ -78,12 +78,25 @@ def _service_definition(package: str) -> dict[str, Any]:
     }
 
 
-def _component(package: str, name: str, msg_type: str) -> dict[str, Any]:
+#: The code of the functions with code, per language.
+CODE = {
+    'python': {'fSetUp': 'self.sample = {type}()\n',
+               'fPublish': 'self.pOut.publish(self.sample)\n'},
+    'cpp': {'fSetUp': 'sample_ = {cpp_type}();\n',
+            'fPublish': 'pOut_->publish(sample_);\n'},
+}
+
+
+def _component(package: str, name: str, msg_type: str,
+               language: str = 'python') -> dict[str, Any]:
     type_name = msg_type.rsplit('/', 1)[-1]
+    code = {function: text.format(type=type_name,
+                                  cpp_type=msg_type.replace('/', '::'))
+            for function, text in CODE[language].items()}
     return {
         'name': name,
         'package': package,
-        'language': 'python',
+        'language': language,
         'description': f'Synthetic component {name}: publishes samples, handles others.',
         'ports': {
             'pOut': {'pattern': 'push', 'role': 'provided', 'type': msg_type,
@@ -96,9 +109,9 @@ def _component(package: str, name: str, msg_type: str) -> dict[str, Any]:
             'OnSample': {'trigger': 'rIn', 'functions': ['fOnSample']},
         },
         'functions': {
-            'fSetUp': {'code': f'self.sample = {type_name}()\n'},
-            'fFill': {'description': 'Fill self.sample from the sensors.'},
-            'fPublish': {'code': 'self.pOut.publish(self.sample)\n'},
+            'fSetUp': {'code': code['fSetUp']},
+            'fFill': {'description': 'Fill the sample from the sensors.'},
+            'fPublish': {'code': code['fPublish']},
             'fOnSample': {'description': 'Handle a sample of the previous component.'},
         },
         'lifecycle': {'on_configure': ['fSetUp']},
@@ -130,11 +143,13 @@ def _write_model(src: Path, package: str, key: str, model: dict[str, Any]) -> Pa
     return path
 
 
-def write_workspace(src: Path, components: int, *, own_messages: bool = True) -> WorkspaceShape:
+def write_workspace(src: Path, components: int, *, own_messages: bool = True,
+                    cpp_every: int = 0) -> WorkspaceShape:
     """Write the model files of a synthetic workspace, one folder per model, into src.
 
     :param own_messages: give each group a service definition of its own; without,
       components exchange ``std_msgs/msg/Header`` and nothing needs rosidl
+    :param cpp_every: make every cpp_every-th component a C++ one (0: none)
     """
     groups = (components + GROUP - 1) // GROUP
     for group in range(groups):
@@ -149,8 +164,11 @@ def write_workspace(src: Path, components: int, *, own_messages: bool = True) ->
         packages = []
         for index in range(size):
             package = f'bench_g{group}_c{index}'
+            number = group * GROUP + index
+            language = 'cpp' if cpp_every and number % cpp_every == cpp_every - 1 \
+                else 'python'
             _write_model(src, package, 'components',
-                         _component(package, f'Node{group}x{index}', msg_type))
+                         _component(package, f'Node{group}x{index}', msg_type, language))
             packages.append(package)
         _write_model(src, f'bench_g{group}_system', 'systems',
                      _system(f'bench_g{group}_system', packages))

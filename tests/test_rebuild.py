@@ -159,7 +159,10 @@ def test_changing_one_component_regenerates_that_package_only(relays):
     model.write_text(model.read_text().replace('# relay 2', '# relay two'))
     _build(root, env)
     after = _stamps(root, 'build', 'install')
-    changed = sorted(n for n in before if after.get(n) != before[n])
+    # the generator's own records (the cache of checked models, the stamps of
+    # the packages it looked at) are no package's work
+    changed = sorted(n for n in before if after.get(n) != before[n]
+                     and not n.startswith('build/.robmosys-cache/'))
     generated = [n for n in changed if '/src-gen/' in n]
     assert generated == ['build/relay2/src-gen/.robmosys-generated',
                          'build/relay2/src-gen/relay2/Relay2.py']

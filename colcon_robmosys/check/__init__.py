@@ -6,10 +6,12 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+import hashlib
 from pathlib import Path
 from typing import Iterable
 
 from colcon_robmosys.check.activities import activity_problems, port_problems
+from colcon_robmosys.check.cache import CheckedFile, file_key, ModelCache
 from colcon_robmosys.check.cycles import CycleRules
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.check.types import TypeRules
@@ -17,14 +19,17 @@ from colcon_robmosys.check.wiring import WiringRules
 from colcon_robmosys.errors import Diagnostic, RobmosysError
 from colcon_robmosys.model.build import FileBuilder
 from colcon_robmosys.model.build_base import MODEL_SECTIONS
-from colcon_robmosys.model.files import find_model_files, packages_of
-from colcon_robmosys.model.loader import load_file, LoadedFile
+from colcon_robmosys.model.files import (
+    find_model_files, model_dependencies, packages_of)
+from colcon_robmosys.model.loader import (
+    load_bytes, load_file, LoadedFile, read_model_bytes)
 from colcon_robmosys.model.schema import structure_problems
 from colcon_robmosys.model.types import (
     Component, ModelFile, ServiceDefinition, System, Workspace)
 
-__all__ = ['check_model_file', 'FileCheck', 'find_model_files', 'load_model_file',
-           'load_workspace', 'LoadResult', 'WorkspaceChecker']
+__all__ = ['check_file', 'check_model_file', 'FileCheck', 'find_model_files',
+           'load_model_file', 'load_workspace', 'LoadResult', 'ModelCache',
+           'WorkspaceChecker']
 
 
 @dataclass
@@ -51,9 +56,36 @@ class LoadResult:
     package_warnings: dict[str, list[Diagnostic]] = field(
         default_factory=dict)
 
+    #: model file -> the key of its content (see check.cache.file_key)
+    file_keys: dict[str, str] = field(default_factory=dict)
+
     def warnings_of(self, package: str) -> list[Diagnostic]:
         """Return the warnings about the model of one package."""
         return self.package_warnings.get(package, [])
+
+    def fingerprint(self, package: str) -> str:
+        """Return a digest of what the generation of a package reads.
+
+        The model files of the package and of every package it depends on,
+        by content (their keys also digest the code of colcon-robmosys):
+        the same fingerprint, the same generated files.
+        """
+        files: set[str] = set()
+        seen: set[str] = set()
+        todo = [package]
+        while todo:
+            name = todo.pop()
+            model = self.workspace.model(name)
+            if name in seen or model is None:
+                continue
+            seen.add(name)
+            files.add(model.info.model_file)
+            todo.extend(model_dependencies(model))
+        digest = hashlib.sha256(package.encode() + b'\0')
+        for path in sorted(files):
+            digest.update(f'{path}\0{self.file_keys.get(path)}\0'.encode(
+                'utf-8', 'surrogateescape'))
+        return digest.hexdigest()
 
     def raise_errors(self) -> None:
         """Raise every error at once, if there is any."""
@@ -120,28 +152,51 @@ def check_model_file(loaded: LoadedFile) -> FileCheck:
         tuple(p for p in everything if p[0] not in kept_packages))
 
 
+def check_file(path: Path, raw: bytes) -> CheckedFile:
+    """Load and check the content of one model file on its own."""
+    try:
+        loaded = load_bytes(raw, path)
+    except RobmosysError as exc:
+        return CheckedFile(None, exc.diagnostics)
+    checked = check_model_file(loaded)
+    return CheckedFile(checked.model_file, checked.diagnostics, checked.broken)
+
+
 def load_workspace(paths: Iterable[Path],
-                   index: InterfaceIndex | None = None) -> LoadResult:
+                   index: InterfaceIndex | None = None,
+                   cache: ModelCache | None = None) -> LoadResult:
     """Load the model files and check them together.
 
     Every file is loaded even when others are broken, so that one run
     reports every problem of the workspace.
+
+    :param cache: where files checked by an earlier run are kept, by content
     """
     files: list[ModelFile] = []
     diagnostics: list[Diagnostic] = []
     broken: dict[str, list[tuple[str, str]]] = {}
+    keys: dict[str, str] = {}
     for path in sorted(set(paths)):
         try:
-            loaded = load_file(path)
+            raw = read_model_bytes(path)
         except RobmosysError as exc:
             diagnostics.extend(exc.diagnostics)
             broken[str(path)] = []
             continue
-        checked = check_model_file(loaded)
-        files.append(checked.model_file)
+        key = keys[str(path)] = file_key(path, raw)
+        checked = cache.get(key) if cache is not None else None
+        if checked is None:
+            checked = check_file(path, raw)
+            if cache is not None:
+                cache.put(key, checked)
+        if checked.model_file is not None:
+            # the models that passed: the rules of the workspace check them
+            files.append(checked.model_file)
         if checked.diagnostics:
             diagnostics.extend(checked.diagnostics)
-            broken[str(path)] = list(checked.broken)
+            broken[str(path)] = list(checked.declared)
+    if cache is not None:
+        cache.prune(set(keys.values()))
     checker = WorkspaceChecker(
         files, index or InterfaceIndex.from_environment(),
         (name for declared in broken.values() for name, _ in declared))
@@ -149,7 +204,8 @@ def load_workspace(paths: Iterable[Path],
     diagnostics.extend(checker.diagnostics)
     return LoadResult(Workspace(tuple(files)), sorted(set(diagnostics)),
                       broken, {package: sorted(set(warnings)) for package,
-                               warnings in checker.package_warnings.items()})
+                               warnings in checker.package_warnings.items()},
+                      keys)
 
 
 class WorkspaceChecker(TypeRules, WiringRules, CycleRules):

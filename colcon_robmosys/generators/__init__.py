@@ -11,6 +11,7 @@ everything goes through one renderer and one writer.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+import os
 from pathlib import Path
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
@@ -22,11 +23,12 @@ from colcon_robmosys.generators.manifest import (
 from colcon_robmosys.generators.plan import FileSpec, PackagePlan, UserFile
 from colcon_robmosys.generators.python import python_package
 from colcon_robmosys.generators.render import render
+from colcon_robmosys.generators.stamp import StampStore
 from colcon_robmosys.generators.system import system_package
 from colcon_robmosys.generators.usercode import check_user_file
 from colcon_robmosys.generators.writer import (
-    create_user_file, is_generated, remove_generated, remove_leftovers,
-    write_generated)
+    create_user_file, GENERATED_MARKER, is_generated, read_current,
+    remove_generated, remove_leftovers, sync_folders, write_generated)
 from colcon_robmosys.mapping.component import plan_component
 from colcon_robmosys.mapping.cpp import spell_cpp
 from colcon_robmosys.mapping.interfaces import plan_interfaces
@@ -37,7 +39,7 @@ from colcon_robmosys.model.types import (
 
 __all__ = ['create_missing_user_files', 'FileSpec', 'generate_package',
            'GenerationReport', 'MANIFEST', 'PackagePlan', 'plan_package',
-           'read_manifest', 'UserFile']
+           'read_manifest', 'StampStore', 'unchanged_package', 'UserFile']
 
 
 @dataclass
@@ -79,22 +81,34 @@ def create_missing_user_files(plan: PackagePlan) -> list[Path]:
     created = []
     for user_file in plan.user_files:
         path = plan.model_dir / user_file.source_path
+        if path.exists() or path.is_symlink():
+            continue  # the user's: rendering it would be for nothing
         text = render(user_file.template, user_file.context)
         if create_user_file(path, text.encode('utf-8')):
             created.append(path)
+    # each file was synced before it was linked; now its folder's entry
+    sync_folders(p.parent for p in created)
     return created
 
 
-def generate_package(plan: PackagePlan, out_dir: Path) -> GenerationReport:
+def generate_package(plan: PackagePlan, out_dir: Path, *,
+                     sync: bool = False, stamps: StampStore | None = None,
+                     fingerprint: str = '') -> GenerationReport:
     """Write the package of a plan into out_dir.
 
     Everything is rendered and checked before the first file is written, so
     that a problem leaves the previous output as it was.
 
+    :param sync: make every file written durable (fsync, then each folder
+      once): for output a user keeps, not for the build tree
+    :param stamps: where to record the generation, under the fingerprint
+      of its inputs (see :func:`unchanged_package`)
+
     :raises RobmosysError: if the user's code is missing or incomplete
     """
     problems: list[Diagnostic] = []
     outputs: dict[str, tuple[bytes, bool]] = {}
+    copied: dict[str, str] = {}
     for spec in plan.files:
         outputs[spec.path] = (render(spec.template, spec.context)
                               .encode('utf-8'), spec.executable)
@@ -113,46 +127,101 @@ def generate_package(plan: PackagePlan, out_dir: Path) -> GenerationReport:
         problems += found
         if shows_skeleton and user_file.skeleton_path in outputs:
             skeletons.append(user_file.skeleton_path)
-        outputs[user_file.package_path] = (source.read_bytes(), False)
+        data = source.read_bytes()
+        outputs[user_file.package_path] = (data, False)
+        copied[str(source)] = digest(data)
     if problems:
         # an error that points at a skeleton finds it up to date
         for relative in skeletons:
             data, executable = outputs[relative]
             write_generated(out_dir / relative, data, executable=executable)
         raise RobmosysError(problems)
-    return _write_outputs(outputs, out_dir)
+    if stamps is None:
+        return _write_outputs(outputs, out_dir, sync=sync)
+    stamps.forget(out_dir)
+    report = _write_outputs(outputs, out_dir, sync=sync)
+    stamps.record(out_dir, fingerprint, [MANIFEST, *outputs], copied)
+    return report
 
 
-def _write_outputs(outputs: dict[str, tuple[bytes, bool]],
-                   out_dir: Path) -> GenerationReport:
+def unchanged_package(out_dir: Path, stamps: StampStore | None,
+                      fingerprint: str) -> GenerationReport | None:
+    """Return the report of a generation that would change nothing, if so.
+
+    :returns: None if the package has to be generated
+    """
+    if stamps is None:
+        return None
+    files = stamps.unchanged(out_dir, fingerprint)
+    if files is None:
+        return None
+    return GenerationReport(unchanged=[f for f in files if f.name != MANIFEST])
+
+
+def _write_outputs(outputs: dict[str, tuple[bytes, bool]], out_dir: Path,
+                   *, sync: bool = False) -> GenerationReport:
+    """Write the outputs of a generation, after checking that each is ours.
+
+    The manifest is written once, before any file, and lists the new content
+    of each file and what is there now: a run killed half-way leaves every
+    file it wrote, or had not yet replaced, known as generated.
+    """
     report = GenerationReport()
-    if out_dir.is_dir():
-        report.removed += remove_leftovers(out_dir)
     manifest_path = out_dir / MANIFEST
     previous = read_manifest(manifest_path)
-    final: Manifest = {relative: {digest(data)}
-                       for relative, (data, _) in outputs.items()}
-    # a run killed half-way must leave every file it wrote known as ours:
-    # first record the old and the new content of each file, then write
-    pending: Manifest = dict(previous)
-    for relative, digests in final.items():
-        pending[relative] = (previous.get(relative) or set()) | (digests or set())
-    if pending != previous:
-        write_manifest(manifest_path, pending)
+    report.removed += remove_leftovers(out_dir, previous)
+    pending: Manifest = {}
+    changes: list[tuple[Path, bytes, bool, bool, bytes | None]] = []
+    refused: list[Diagnostic] = []
     for relative, (data, executable) in sorted(outputs.items()):
         path = out_dir / relative
-        if write_generated(path, data, executable=executable,
-                           owned=unchanged_since(path, previous, relative)):
-            report.written.append(path)
-        else:
-            report.unchanged.append(path)
+        current = read_current(path)
+        new = digest(data)
+        if current == data:
+            pending[relative] = {new}
+            if executable and not os.access(path, os.X_OK):
+                changes.append((path, data, executable, True, current))
+            else:
+                report.unchanged.append(path)
+            continue
+        if current is None:
+            pending[relative] = {new}
+            changes.append((path, data, executable, True, current))
+            continue
+        old = digest(current)
+        owned = relative in previous and (
+            previous[relative] is None or old in (previous[relative] or ()))
+        if not owned and GENERATED_MARKER not in current[:2048]:
+            refused.append(Diagnostic(
+                Location(str(path)), 'refusing to overwrite a file that '
+                'colcon-robmosys did not generate; move it away to let the '
+                'generator write here'))
+            continue
+        pending[relative] = {new, old}
+        changes.append((path, data, executable, owned, current))
+    if refused:
+        raise RobmosysError(refused)
+    stale = []
     for relative in sorted(previous.keys() - outputs.keys()):
         path = out_dir / relative
         if not unchanged_since(path, previous, relative) and \
                 not is_generated(path):
             # replaced by a file of the user's since: theirs to keep
             continue
+        pending[relative] = previous[relative]
+        stale.append(path)
+    if pending != previous:
+        write_manifest(manifest_path, pending, sync=sync)
+    for path, data, executable, owned, current in changes:
+        if write_generated(path, data, executable=executable, owned=owned,
+                           sync=sync, current=current):
+            report.written.append(path)
+        else:
+            report.unchanged.append(path)  # only its mode was set
+    for path in stale:
         if remove_generated(path, out_dir):
             report.removed.append(path)
-    write_manifest(manifest_path, final)
+    if sync and (report.written or report.removed):
+        sync_folders([out_dir] + [p.parent for p in report.written] +
+                     [p.parent for p in report.removed if p.parent.is_dir()])
     return report

@@ -37,12 +37,12 @@ def read_manifest(path: Path) -> Manifest:
     return files
 
 
-def write_manifest(path: Path, files: Manifest) -> None:
+def write_manifest(path: Path, files: Manifest, *, sync: bool = False) -> None:
     """Write the manifest of a generation."""
     write_generated(path, (f'# {GENERATED_NOTE}\n' + ''.join(
         f'{value}  {relative}\n' for relative in sorted(files)
         for value in sorted(files[relative] or ())
-    )).encode('utf-8'), owned=True)
+    )).encode('utf-8'), owned=True, sync=sync)
 
 
 def digest(data: bytes) -> str:

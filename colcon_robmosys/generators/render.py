@@ -38,6 +38,9 @@ def environment() -> jinja2.Environment:
         trim_blocks=True,
         lstrip_blocks=True,
         autoescape=False,
+        # the templates are package data: no need to stat each one again
+        # at every render to see whether it changed
+        auto_reload=False,
     )
     env.filters.update(FILTERS)
     return env
@@ -51,10 +54,16 @@ def variables(context: Any) -> dict[str, Any]:
     """
     if not is_dataclass(context) or isinstance(context, type):
         raise TypeError(f'a template context is a dataclass, not {context!r}')
-    names = [f.name for f in fields(context)]
-    names += [name for name, value in vars(type(context)).items()
+    return {name: getattr(context, name) for name in _names(type(context))}
+
+
+@lru_cache(maxsize=None)
+def _names(cls: type) -> tuple[str, ...]:
+    """Return the names of the fields and properties of a context class."""
+    names = [f.name for f in fields(cls)]
+    names += [name for name, value in vars(cls).items()
               if isinstance(value, property)]
-    return {name: getattr(context, name) for name in names}
+    return tuple(names)
 
 
 def render(template: str, context: Any) -> str:

@@ -5,9 +5,10 @@
 
 from __future__ import annotations
 
+import itertools
 import os
 from pathlib import Path
-import tempfile
+from typing import Iterable
 
 from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.mapping.common import GENERATED_BY
@@ -20,6 +21,17 @@ GENERATED_MARKER = GENERATED_BY.encode('utf-8')
 TEMP_SUFFIX = '.robmosys-tmp'
 
 
+#: Numbers the temporary files of this process.
+_counter = itertools.count()
+
+
+class _Unread:
+    """The type of :data:`_UNREAD`: the caller has not read the file."""
+
+
+_UNREAD = _Unread()
+
+
 def is_generated(path: Path) -> bool:
     """Say whether a file carries the banner of a generated file."""
     try:
@@ -29,21 +41,36 @@ def is_generated(path: Path) -> bool:
         return False
 
 
-def _write_temp(path: Path, data: bytes, mode: int) -> Path:
-    """Write data to a new temporary file beside path; return its path."""
+def _write_temp(path: Path, data: bytes, executable: bool, *,
+                sync: bool) -> Path:
+    """Write data to a new temporary file beside path; return its path.
+
+    :param sync: flush the data to the disk before returning, so that a
+      rename or link that follows cannot outlive it in a power cut
+    """
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, temp = tempfile.mkstemp(prefix=f'.{path.name}.', suffix=TEMP_SUFFIX,
-                                dir=path.parent)
+    # created with its final mode (the umask applies), so that no chmod
+    # follows; O_EXCL: a name another process took is tried again
+    mode = 0o777 if executable else 0o666
+    while True:
+        temp = path.parent / \
+            f'.{path.name}.{os.getpid()}-{next(_counter)}{TEMP_SUFFIX}'
+        try:
+            fd = os.open(temp, os.O_WRONLY | os.O_CREAT | os.O_EXCL |
+                         getattr(os, 'O_CLOEXEC', 0), mode)
+            break
+        except FileExistsError:
+            continue
     try:
         with os.fdopen(fd, 'wb') as stream:
             stream.write(data)
-            stream.flush()
-            os.fsync(stream.fileno())
-        os.chmod(temp, mode)
+            if sync:
+                stream.flush()
+                os.fsync(stream.fileno())
     except BaseException:  # noqa: B902 - no temporary file outlives a failure
         os.unlink(temp)
         raise
-    return Path(temp)
+    return temp
 
 
 def _mode(executable: bool) -> int:
@@ -53,25 +80,30 @@ def _mode(executable: bool) -> int:
 
 
 def write_generated(path: Path, data: bytes, *, executable: bool = False,
-                    owned: bool = False) -> bool:
+                    owned: bool = False, sync: bool = False,
+                    current: bytes | None | _Unread = _UNREAD) -> bool:
     """Write a generated file unless it already has this content.
 
     The file is replaced atomically: a reader, or a run killed half-way,
-    sees the old content or the new one, never a mix.
+    sees the old content or the new one, never a mix. That needs no fsync:
+    a killed process leaves its writes in the kernel, and the rename makes
+    them visible at once. Only a power cut could then leave a file renamed
+    but empty; in the build tree the next generation, which compares every
+    file with the manifest, rewrites it (or, without its banner, refuses and
+    says so), so the build tree is not synced file by file.
 
     :param owned: the file was written by an earlier generation even if it
       has no banner (a copy of the user's code into the build tree)
+    :param sync: fsync the new content before the rename (files a user
+      keeps, e.g. generated into their source tree); the caller syncs the
+      folders once, see :func:`sync_folders`
+    :param current: the content of the file, if the caller read it already
+      (None: there is no file)
     :returns: whether the file was written
     :raises RobmosysError: if a file that is not generated is in the way
     """
-    try:
-        current = path.read_bytes()
-    except FileNotFoundError:
-        current = None
-    except IsADirectoryError:
-        raise RobmosysError.in_file(
-            path, 'cannot generate this file: a directory is in the way'
-        ) from None
+    if isinstance(current, _Unread):
+        current = read_current(path)
     if current == data:
         if executable and not os.access(path, os.X_OK):
             os.chmod(path, _mode(True))
@@ -81,9 +113,37 @@ def write_generated(path: Path, data: bytes, *, executable: bool = False,
         raise RobmosysError.in_file(
             path, 'refusing to overwrite a file that colcon-robmosys did not '
             'generate; move it away to let the generator write here')
-    temp = _write_temp(path, data, _mode(executable))
+    temp = _write_temp(path, data, executable, sync=sync)
     os.replace(temp, path)
     return True
+
+
+def read_current(path: Path) -> bytes | None:
+    """Return the content of a file about to be generated, None if absent.
+
+    :raises RobmosysError: if a directory is in the way
+    """
+    try:
+        return path.read_bytes()
+    except FileNotFoundError:
+        return None
+    except IsADirectoryError:
+        raise RobmosysError.in_file(
+            path, 'cannot generate this file: a directory is in the way'
+        ) from None
+
+
+def sync_folders(folders: Iterable[Path]) -> None:
+    """Flush the entries (renames, links) of each folder to the disk, once."""
+    for folder in sorted(set(folders)):
+        try:
+            fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
+        except OSError:
+            continue  # removed meanwhile: nothing of ours to keep there
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
 
 
 def create_user_file(path: Path, data: bytes) -> bool:
@@ -94,9 +154,16 @@ def create_user_file(path: Path, data: bytes) -> bool:
     if path.exists() or path.is_symlink():
         return False
     # what a run killed before the link below left behind
-    for leftover in path.parent.glob(f'.{path.name}.*{TEMP_SUFFIX}'):
-        leftover.unlink()
-    temp = _write_temp(path, data, _mode(False))
+    prefix = f'.{path.name}.'
+    try:
+        names = os.listdir(path.parent)
+    except FileNotFoundError:
+        names = []
+    for name in names:
+        if name.startswith(prefix) and name.endswith(TEMP_SUFFIX):
+            os.unlink(path.parent / name)
+    # the user's own file from now on: on the disk before it is linked
+    temp = _write_temp(path, data, False, sync=True)
     try:
         # link() refuses to replace an existing file, so a file the user
         # created meanwhile is never clobbered
@@ -128,14 +195,27 @@ def remove_generated(path: Path, root: Path) -> bool:
     return True
 
 
-def remove_leftovers(root: Path) -> list[Path]:
+def remove_leftovers(root: Path, manifest: Iterable[str] = ()) -> list[Path]:
     """Remove the temporary files a killed generation left below root.
 
+    A generation writes its manifest before any other file, so its
+    temporary files lie in root or in a folder of a file of the manifest:
+    only those folders are looked at, not the whole tree.
+
+    :param manifest: the files (relative to root) of the last manifest
     :returns: the files removed
     """
+    folders = {root} | {(root / relative).parent for relative in manifest}
     removed = []
-    for path in sorted(root.rglob(f'.*{TEMP_SUFFIX}')):
-        if path.is_file() and not path.is_symlink():
-            path.unlink()
-            removed.append(path)
-    return removed
+    for folder in sorted(folders):
+        try:
+            entries = list(os.scandir(folder))
+        except (FileNotFoundError, NotADirectoryError):
+            continue
+        for entry in entries:
+            if entry.name.startswith('.') and \
+                    entry.name.endswith(TEMP_SUFFIX) and \
+                    entry.is_file(follow_symlinks=False):
+                os.unlink(entry.path)
+                removed.append(Path(entry.path))
+    return sorted(removed)

@@ -5,70 +5,25 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
-import re
 from typing import Any
 
 import yaml
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
+from colcon_robmosys.model.loaded import (
+    LoadedFile, MAX_ALIASED_VALUES, MAX_MODEL_BYTES, MAX_MODEL_DEPTH,
+    MAX_MODEL_NODES, NodePath, NOT_PRINTABLE, RawData)
+from colcon_robmosys.model.loader_fast import CLoader, FastBuilder, Unusual
 
-#: A path into the loaded data: mapping keys and sequence indexes.
-NodePath = tuple[str | int, ...]
-
-#: A mapping of the loaded data, structurally checked by the schema.
-RawData = dict[str, Any]
-
-#: Model files larger than this are refused before parsing. PyYAML parses
-#: some 150 kB a second: a megabyte keeps the worst case to seconds, and is
-#: far more than a model of even a large package needs.
-MAX_MODEL_BYTES = 1024 * 1024
-
-#: How many values (mappings, lists, scalars) a model file may hold: about
-#: four seconds of parsing, however short the values are.
-MAX_MODEL_NODES = 100_000
-
-#: How deeply mappings and lists may nest: a model nests some ten levels;
-#: thousands would exhaust Python's stack in the YAML composer.
-MAX_MODEL_DEPTH = 64
-
-#: How many values aliases may repeat in all: the data is shared, but every
-#: later step (validation, messages, generated files) walks it expanded.
-MAX_ALIASED_VALUES = 100_000
-
-#: What YAML allows in a file (YAML 1.1, 5.1): an escape in a quoted
-#: string could still produce anything else, which no generated file can
-#: carry (XML has no NUL, UTF-8 no lone surrogate).
-_NOT_PRINTABLE = re.compile(
-    '[^\t\n\r\x20-\x7e\x85\xa0-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]')
+__all__ = ['LoadedFile', 'load_bytes', 'load_file', 'load_text',
+           'load_text_completely', 'MAX_ALIASED_VALUES', 'MAX_MODEL_BYTES',
+           'MAX_MODEL_DEPTH', 'MAX_MODEL_NODES', 'NodePath', 'RawData',
+           'read_model_bytes']
 
 _MERGE_TAG = 'tag:yaml.org,2002:merge'
 _MAP_TAG = 'tag:yaml.org,2002:map'
 _SEQ_TAG = 'tag:yaml.org,2002:seq'
-
-
-@dataclass(frozen=True)
-class LoadedFile:
-    """The plain data of one model file and where each of its nodes stands."""
-
-    path: Path
-    data: Any
-    value_marks: dict[NodePath, Location]
-    key_marks: dict[NodePath, Location]
-
-    def location(self, node_path: NodePath, *, key: bool = False) -> Location:
-        """Return the location of a node, or of the closest known parent.
-
-        :param key: point at the mapping key of the node instead of its value
-        """
-        marks = self.key_marks if key else self.value_marks
-        path = tuple(node_path)
-        while path:
-            if path in marks:
-                return marks[path]
-            path = path[:-1]
-        return self.value_marks.get((), Location(str(self.path), 1, 1))
 
 
 class _LimitedLoader(yaml.SafeLoader):
@@ -189,14 +144,14 @@ class _Builder:
             return items
         value = self._loader.construct_object(node, deep=True)
         if isinstance(value, str) and self._unprintable(node, value):
-            value = _NOT_PRINTABLE.sub('\ufffd', value)
+            value = NOT_PRINTABLE.sub('\ufffd', value)
         self._built[id(node)] = value
         self._sizes[id(node)] = 1
         return value
 
     def _unprintable(self, node: yaml.Node, text: str) -> bool:
         """Report a character of a string that YAML does not allow raw."""
-        found = _NOT_PRINTABLE.search(text)
+        found = NOT_PRINTABLE.search(text)
         if found is None:
             return False
         self.diagnostics.append(Diagnostic(
@@ -254,6 +209,25 @@ def load_text(text: str, path: Path) -> LoadedFile:
 
     :raises RobmosysError: for YAML syntax errors and ambiguous keys
     """
+    if CLoader is not None:
+        fast = FastBuilder(path, text)
+        try:
+            data = fast.build()
+        except Unusual:
+            pass
+        else:
+            return LoadedFile(path, data, fast.value_marks, fast.key_marks)
+    return load_text_completely(text, path)
+
+
+def load_text_completely(text: str, path: Path) -> LoadedFile:
+    """Parse the text of a model file with PyYAML's Python loader.
+
+    Slower than :func:`load_text`, but every YAML feature and every problem
+    goes through it.
+
+    :raises RobmosysError: for YAML syntax errors and ambiguous keys
+    """
     try:
         loader = _LimitedLoader(text, path)
     except yaml.reader.ReaderError as exc:
@@ -299,16 +273,31 @@ def load_file(path: Path) -> LoadedFile:
 
     :raises RobmosysError: if the file cannot be read or parsed
     """
+    return load_bytes(read_model_bytes(path), path)
+
+
+def read_model_bytes(path: Path) -> bytes:
+    """Read a model file, unless it is too large to be a model.
+
+    :raises RobmosysError: if the file cannot be read or is too large
+    """
     try:
         size = path.stat().st_size
         if size > MAX_MODEL_BYTES:
             raise RobmosysError.in_file(
                 path, f'the model file has {size} bytes, more than the '
                 f'{MAX_MODEL_BYTES} a model may have')
-        raw = path.read_bytes()
+        return path.read_bytes()
     except OSError as exc:
         raise RobmosysError.in_file(
             path, f'cannot read the model file: {exc.strerror}') from None
+
+
+def load_bytes(raw: bytes, path: Path) -> LoadedFile:
+    """Decode and parse the content of a model file.
+
+    :raises RobmosysError: if it is not UTF-8 or cannot be parsed
+    """
     try:
         text = raw.decode('utf-8')
     except UnicodeDecodeError as exc:

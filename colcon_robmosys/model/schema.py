@@ -9,7 +9,7 @@ from functools import lru_cache
 from importlib import resources
 import json
 import re
-from typing import Any, Iterator
+from typing import Any, Callable, Iterator
 
 from jsonschema import Draft202012Validator
 from jsonschema.exceptions import ValidationError
@@ -57,6 +57,38 @@ _Validator = extend(Draft202012Validator, {'pattern': _pattern})
 @lru_cache(maxsize=1)
 def _validator() -> Any:
     return _Validator(schema())
+
+
+@lru_cache(maxsize=1)
+def _fast_check() -> Callable[[Any], Any] | None:
+    """Return the schema compiled to Python code, None without fastjsonschema.
+
+    It says only whether a model is valid, and why at its first problem;
+    jsonschema says what every problem is, as the messages below translate
+    them, but takes some fifteen times as long: it reports the problems of
+    the models fastjsonschema finds invalid.
+    """
+    try:
+        import fastjsonschema
+    except ImportError:
+        return None
+    # fastjsonschema knows drafts 4 to 7: the schema uses nothing of 2020-12
+    # that draft 7 lacks ($defs is found through the $ref pointers)
+    definition = dict(schema(), **{
+        '$schema': 'http://json-schema.org/draft-07/schema#'})
+    return fastjsonschema.compile(definition)
+
+
+def is_valid(data: Any) -> bool:
+    """Say whether data passes the schema, as fast as can be."""
+    fast = _fast_check()
+    if fast is None:
+        return _validator().is_valid(data)
+    try:
+        fast(data)
+    except Exception:  # noqa: B902 - any failure: let jsonschema tell
+        return False
+    return True
 
 
 def _describe(value: Any) -> str:
@@ -175,6 +207,8 @@ def check_structure(loaded: LoadedFile) -> list[Diagnostic]:
 def structure_problems(loaded: LoadedFile
                        ) -> list[tuple[NodePath, Diagnostic]]:
     """Check a loaded file against the schema; return every problem and its node."""
+    if is_valid(loaded.data):
+        return []
     diagnostics = []
     for error in _validator().iter_errors(loaded.data):
         for leaf in _leaves(error):

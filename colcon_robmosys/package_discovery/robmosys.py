@@ -10,6 +10,8 @@ from colcon_core.package_discovery import PackageDiscoveryExtensionPoint
 from colcon_core.plugin_system import satisfies_version
 
 from colcon_robmosys.check import load_workspace
+from colcon_robmosys.check.cache import CACHE_DIR
+from colcon_robmosys.check.cache import ModelCache
 from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
 from colcon_robmosys.model.files import model_dependencies
 from colcon_robmosys.model.types import Component
@@ -57,7 +59,7 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
                     runtime_folders |= extension.runtime_folders
         if not model_files:
             return set()
-        result = load_workspace(model_files)
+        result = load_workspace(model_files, cache=model_cache(args))
         # errors now, whatever the verb, since they stop what it does;
         # warnings are told by the build of their package and by
         # robmosys-generate, and only for the packages selected
@@ -90,6 +92,22 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
         if not runtime_folders and _runtime_needed(args):
             descriptors.add(_runtime_descriptor())
         return descriptors
+
+
+def model_cache(args):
+    """Return the cache of checked model files in the build base, if any.
+
+    ``colcon build`` (and ``colcon test``) keep it up to date; ``colcon list``,
+    ``colcon graph`` and the others only read it, if there is one in
+    ``build/``: they write nothing.
+    """
+    build_base = getattr(args, 'build_base', None)
+    writable = build_base is not None and \
+        getattr(args, 'verb_name', None) in ('build', 'test')
+    folder = Path(build_base or 'build') / CACHE_DIR
+    if not writable and not folder.is_dir():
+        return None
+    return ModelCache(folder, writable=writable)
 
 
 def _runtime_needed(args):

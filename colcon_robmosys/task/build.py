@@ -11,9 +11,12 @@ from colcon_core.plugin_system import satisfies_version
 from colcon_core.task import TaskExtensionPoint
 from colcon_ros.task.ament_cmake.build import AmentCmakeBuildTask
 
+from colcon_robmosys.check.cache import CACHE_DIR
 from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
+from colcon_robmosys.generators import StampStore
+from colcon_robmosys.generators import unchanged_package
 from colcon_robmosys.package_discovery.robmosys import METADATA_KEY
 
 logger = colcon_logger.getChild(__name__)
@@ -47,9 +50,15 @@ class RobmosysBuildTask(TaskExtensionPoint):
             self.context.put_event_into_queue(
                 StderrLine(f'{diagnostic}\n'.encode()))
         source_dir = Path(args.build_base) / GENERATED_DIR
+        # args.build_base is build/<package>: the stamps are kept beside the
+        # cache of the checked models, in build/
+        stamps = StampStore(Path(args.build_base).parent / CACHE_DIR / 'stamps')
+        fingerprint = result.fingerprint(pkg.name)
         try:
             plan = plan_package(result.workspace, pkg.name)
-            report = generate_package(plan, source_dir)
+            report = unchanged_package(source_dir, stamps, fingerprint) or \
+                generate_package(plan, source_dir, stamps=stamps,
+                                 fingerprint=fingerprint)
         except RobmosysError as error:
             for diagnostic in error.diagnostics:
                 logger.error(str(diagnostic))

@@ -78,7 +78,9 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
                     print(f'created {_display(path)}: yours to fill in')
                 if args.output_dir is not None:
                     out = args.output_dir / descriptor.name
-                    report = generate_package(plan, out)
+                    # output the user keeps (it may be under version
+                    # control), unlike the build tree: made durable
+                    report = generate_package(plan, out, sync=True)
                     print(f'generated {descriptor.name} in {_display(out)}: '
                           f'{len(report.written)} written, '
                           f'{len(report.unchanged)} unchanged, '
