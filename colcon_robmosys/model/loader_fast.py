@@ -163,7 +163,8 @@ class FastBuilder:
 
 def _scalar_tag(loader: Any, event: Any) -> str:
     # what the implicit resolvers make of an untagged scalar
-    return loader.resolve(yaml.ScalarNode, event.value, event.implicit)
+    tag: str = loader.resolve(yaml.ScalarNode, event.value, event.implicit)
+    return tag
 
 
 def _scalar(loader: Any, event: Any) -> Any:

@@ -83,7 +83,7 @@ def is_valid(data: Any) -> bool:
     """Say whether data passes the schema, as fast as can be."""
     fast = _fast_check()
     if fast is None:
-        return _validator().is_valid(data)
+        return bool(_validator().is_valid(data))
     try:
         fast(data)
     except Exception:  # noqa: B902 - any failure: let jsonschema tell
