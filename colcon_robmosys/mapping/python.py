@@ -10,15 +10,16 @@ Nothing here decides what a port becomes (that is the port-kind table of
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 import textwrap
 from typing import Any, Mapping
 
-from colcon_robmosys.mapping.common import (
-    Banner, banner_of, package_xml, PackageXml)
+from colcon_robmosys.mapping.common import banner_of, package_xml
 from colcon_robmosys.mapping.component import (
     ComponentPlan, FunctionPlan, PortPlan)
 from colcon_robmosys.mapping.portkinds import Entity, Returns
+from colcon_robmosys.mapping.python_context import (
+    PyActivity, PyComponent, PyFunction, PyParameter, PyPort, PyRange,
+    PyTransition)
 from colcon_robmosys.mapping.qos import resolve_qos
 from colcon_robmosys.model.types import Component, InterfaceRef, Parameter, QoS
 
@@ -70,123 +71,6 @@ STDLIB = frozenset({'os', 'sys', 'threading', 'time', 'traceback'})
 
 #: the longest line a list of methods is written on (ament_flake8: 99)
 _LINE = 99
-
-
-@dataclass(frozen=True)
-class PyPort:
-    """A port as the Python node creates it."""
-
-    name: str
-    description: str
-    entity: str
-    type: str
-    type_full: str
-    #: the QoS profile expression, for ports that use a topic
-    qos: str | None
-    qos_const: str
-    activity: str | None
-    functions: tuple[str, ...]
-    #: the ComponentNode method that creates it
-    method: str
-    #: what its activity runs: a method, or a list of them
-    run: str
-
-
-@dataclass(frozen=True)
-class PyFunction:
-    """A function of the model as a method."""
-
-    name: str
-    args: tuple[str, ...]
-    code: str | None
-    returns: str
-    default_return: str
-    description: str
-
-
-@dataclass(frozen=True)
-class PyRange:
-    """The range of a numeric parameter's descriptor."""
-
-    field: str
-    cls: str
-    start: str
-    end: str
-    step: str
-
-
-@dataclass(frozen=True)
-class PyParameter:
-    """A parameter: its declaration with a descriptor, and its accessor."""
-
-    name: str
-    py_type: str
-    ros_type: str
-    default: Any
-    description: str
-    doc: str
-    read_only: bool
-    range: PyRange | None
-
-
-@dataclass(frozen=True)
-class PyActivity:
-    """A periodic activity and its timer."""
-
-    name: str
-    period: float | None
-    functions: tuple[str, ...]
-    description: str
-    #: the list of methods it runs
-    run: str
-
-
-@dataclass(frozen=True)
-class PyTransition:
-    """A lifecycle transition that runs functions of the model."""
-
-    transition: str
-    #: the list of methods it runs
-    run: str
-
-
-@dataclass(frozen=True)
-class PyComponent:
-    """Everything the templates of a Python component print."""
-
-    banner: Banner
-    package: str
-    cls: str
-    node_cls: str
-    node_module: str
-    description: str
-    node_imports: tuple[str, ...]
-    main_imports: tuple[str, ...]
-    impl_imports: tuple[str, ...]
-    ports: tuple[PyPort, ...]
-    #: the periodic activities
-    activities: tuple[PyActivity, ...]
-    activity_names: tuple[str, ...]
-    functions: tuple[PyFunction, ...]
-    user_functions: tuple[PyFunction, ...]
-    parameters: tuple[PyParameter, ...]
-    lifecycle: tuple[PyTransition, ...]
-    has_impl: bool
-    #: packages it builds against (its interfaces), and runs with
-    depends: tuple[str, ...]
-    exec_depends: tuple[str, ...]
-    package_xml: PackageXml
-    skeleton: bool = False
-
-    @property
-    def port_names(self) -> list[str]:
-        """Return the names of the ports (attributes of the node)."""
-        return [p.name for p in self.ports]
-
-    @property
-    def impl_path(self) -> str:
-        """Return where the user's implementation lives, next to the model."""
-        return f'src/{self.package}/{self.cls}_impl.py'
 
 
 def import_lines(modules: Mapping[str, set[str] | frozenset[str]]) -> tuple[str, ...]:
