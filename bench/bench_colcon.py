@@ -29,9 +29,8 @@ import sys
 import tempfile
 from typing import Sequence
 
-# benchlib first: it puts the harness of the tests on the path
 from benchlib import best, print_end, print_machine, ratio, spread, table, timed
-from harness import ros_env
+from colcon_robmosys.devtools import ros_env
 from synthetic import write_handwritten, write_workspace
 
 SIDES = ('models', 'hand-written')

@@ -46,11 +46,10 @@ from typing import Any, Mapping, Sequence
 
 import yaml
 
-# benchlib first: it puts the harness of the tests on the path
 from benchlib import print_end, print_machine, ratio, REPO, table
+from colcon_robmosys.devtools import ros_env
+from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
 from colcon_robmosys.task.build import missing_prefix_packages
-from harness import ros_env
-from harness.system import LifecycleDriver, wait_until
 
 HANDWRITTEN = REPO / 'bench' / 'handwritten_pubsub.py'
 #: the ament_cmake package of the hand-written C++ pair

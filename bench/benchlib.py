@@ -15,13 +15,9 @@ import os
 from pathlib import Path
 import platform
 import statistics
-import sys
 import time
 
 REPO = Path(__file__).resolve().parent.parent
-# the harness of the tests starts ROS 2 processes on loopback, for the benchmarks too
-if str(REPO / 'tests') not in sys.path:
-    sys.path.insert(0, str(REPO / 'tests'))
 
 #: Distributions whose versions a result depends on.
 VERSIONED = ('colcon-robmosys', 'colcon-core', 'colcon-ros', 'ros-rclpy', 'ros-rmw-fastrtps-cpp',

@@ -11,7 +11,7 @@ import sys
 
 import pytest
 
-from harness import ros_env
+from colcon_robmosys.devtools import ros_env
 
 REPO = Path(__file__).resolve().parent.parent
 TEST_WORKSPACE = REPO / 'test_workspace'

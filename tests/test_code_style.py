@@ -34,3 +34,14 @@ def test_mypy():
         cwd=REPO, capture_output=True, text=True, timeout=300,
         env={**os.environ, 'MYPYPATH': str(REPO / 'tests')})
     assert result.returncode == 0, result.stdout + result.stderr
+
+
+def test_mypy_strict_on_the_core():
+    """The layers under the generators pass mypy --strict, whatever setup.cfg says."""
+    pytest.importorskip('mypy', reason='mypy is installed by `make test`')
+    result = subprocess.run(
+        [sys.executable, '-m', 'mypy', '--config-file', str(REPO / 'setup.cfg'),
+         '--cache-dir', os.devnull, '--strict', '-p', 'colcon_robmosys.model',
+         '-p', 'colcon_robmosys.check', '-p', 'colcon_robmosys.mapping'],
+        cwd=REPO, capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stdout + result.stderr

@@ -184,7 +184,7 @@ def test_build_of_a_broken_model_fails_and_writes_nothing(workspace):
 
 def test_colcon_uses_the_installed_package_and_its_templates(tmp_path):
     """The package works from a non-editable install: templates are package data."""
-    from harness.ros_env import loopback_env, run
+    from colcon_robmosys.devtools.ros_env import loopback_env, run
     import sys
     code = ('import colcon_robmosys\n'
             'from colcon_robmosys.generators.render import templates_dir\n'

@@ -20,11 +20,11 @@ import sys
 
 import pytest
 
+from colcon_robmosys.devtools import ros_env
+from colcon_robmosys.devtools.system import LifecycleDriver, read_launch_file, wait_until
 from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
 from colcon_robmosys.task.build import missing_prefix_packages
 from conftest import requires_ros
-from harness import ros_env
-from harness.system import LifecycleDriver, read_launch_file, wait_until
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
@@ -251,7 +251,7 @@ rclpy.shutdown()
 @requires_rclcpp
 def test_cpp_component_runs_in_a_container(test_workspace_built, domain_id):
     """rclcpp_components loads the registered component into a container process."""
-    from harness.ros_env import background, run
+    from colcon_robmosys.devtools.ros_env import background, run
     env = test_workspace_built.env(domain_id)
     container = None
     for prefix in env['AMENT_PREFIX_PATH'].split(os.pathsep):

@@ -19,9 +19,10 @@ from typing import Iterator
 
 import pytest
 
+from colcon_robmosys.devtools.ros_env import Background, background, free_domain_id
+from colcon_robmosys.devtools.system import (
+    LifecycleDriver, NodeLaunch, read_launch_file, wait_until)
 from conftest import BuiltWorkspace, requires_ros
-from harness.ros_env import Background, background, free_domain_id
-from harness.system import LifecycleDriver, NodeLaunch, read_launch_file, wait_until
 
 pytestmark = [pytest.mark.integration, requires_ros]
 

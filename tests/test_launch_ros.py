@@ -14,9 +14,9 @@ import sys
 
 import pytest
 
+from colcon_robmosys.devtools.ros_env import background
+from colcon_robmosys.devtools.system import wait_until
 from conftest import requires_ros
-from harness.ros_env import background
-from harness.system import wait_until
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
@@ -61,7 +61,7 @@ def test_activate_brings_the_system_up(test_workspace_built, launch_env, launch_
 
 
 def test_launch_leaves_the_nodes_unconfigured(test_workspace_built, launch_env, domain_id):
-    from harness.system import LifecycleDriver
+    from colcon_robmosys.devtools.system import LifecycleDriver
     share = test_workspace_built.share('pubsub_system')
     with background([sys.executable, '-c', LAUNCHER, str(share / 'launch' / 'launch.py')],
                     env=launch_env):
@@ -75,7 +75,7 @@ def test_launch_leaves_the_nodes_unconfigured(test_workspace_built, launch_env, 
 def test_dummy_robot_activates_in_order_and_wires_every_connection(
         test_workspace_built, launch_env, domain_id):
     """activate.py of dummy_robot_bringup: every connection carries data, the spare idles."""
-    from harness.system import LifecycleDriver
+    from colcon_robmosys.devtools.system import LifecycleDriver
     from test_dummy_robot_system import _model, effective_parameters, expected_report
     system, components = _model()
     wanted = set()

@@ -30,7 +30,7 @@ PATH = Path('robmosys.yaml')
 FUZZ = settings(derandomize=True, database=None, deadline=None, max_examples=200,
                 suppress_health_check=[HealthCheck.too_slow])
 
-needs_libyaml = pytest.mark.skipif(loader._CLoader is None,
+needs_libyaml = pytest.mark.skipif(loader.CLoader is None,
                                    reason='PyYAML was built without libyaml')
 
 
@@ -60,10 +60,10 @@ def _alike(text: str) -> None:
 
 def _fast(text: str) -> tuple[Any, ...] | None:
     """Return what the events give, None where they hand over to the Python loader."""
-    builder = loader._FastBuilder(PATH, text)
+    builder = loader.FastBuilder(PATH, text)
     try:
         data = builder.build()
-    except loader._Unusual:
+    except loader.Unusual:
         return None
     return (data, builder.value_marks, builder.key_marks)
 
@@ -124,7 +124,7 @@ def test_without_libyaml_the_python_loader_does_it_all(monkeypatch):
     texts = [p.read_text(encoding='utf-8') for p in
              sorted((TESTS / 'models' / 'valid').glob('*.yaml'))]
     expected = [_complete(t) for t in texts]
-    monkeypatch.setattr(loader, '_CLoader', None)
+    monkeypatch.setattr(loader, 'CLoader', None)
     for text, result in zip(texts, expected):
         loaded = load_text(text, PATH)
         assert (loaded.data, loaded.value_marks, loaded.key_marks) == result

@@ -9,9 +9,9 @@ import re
 
 import pytest
 
+from colcon_robmosys.devtools.ros_env import background
+from colcon_robmosys.devtools.system import LifecycleDriver, read_launch_file, wait_until
 from conftest import requires_ros
-from harness.ros_env import background
-from harness.system import LifecycleDriver, read_launch_file, wait_until
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
@@ -37,7 +37,7 @@ def test_installed_layout(test_workspace_built):
 
 def test_messages_are_importable(test_workspace_built, domain_id):
     """The message package built through rosidl is usable from rclpy."""
-    from harness.ros_env import run
+    from colcon_robmosys.devtools.ros_env import run
     import sys
     code = ('from simple_msgs.msg import Map, OGM\n'
             'm = Map(); m.ogm.width = 16; m.ogm.data = [-1, 0, 100]\n'
@@ -50,7 +50,7 @@ def test_messages_are_importable(test_workspace_built, domain_id):
 
 def test_hand_written_package_uses_generated_messages(test_workspace_built, domain_id):
     """A package.xml package that depends on simple_msgs builds after it and uses it."""
-    from harness.ros_env import run
+    from colcon_robmosys.devtools.ros_env import run
     install = test_workspace_built.install
     result = run([str(install / 'map_tools' / 'lib' / 'map_tools' / 'map_cells'), '3', '7'],
                  env=test_workspace_built.env(domain_id), timeout=30)

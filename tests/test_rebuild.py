@@ -21,8 +21,8 @@ import sys
 
 import pytest
 
+from colcon_robmosys.devtools import ros_env
 from conftest import requires_ros, TEST_WORKSPACE
-from harness import ros_env
 
 pytestmark = requires_ros
 
@@ -197,9 +197,9 @@ import sys
 import os
 from pathlib import Path
 import re
-from colcon_robmosys.generators import generate_package
 from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
 
 src, out = Path(sys.argv[1]), Path(sys.argv[2])

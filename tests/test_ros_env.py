@@ -12,7 +12,7 @@ import time
 
 import pytest
 
-from harness import ros_env
+from colcon_robmosys.devtools import ros_env
 
 PUBLISHER = """
 import rclpy

@@ -12,9 +12,9 @@ from pathlib import Path
 
 import pytest
 
+from colcon_robmosys.devtools.ros_env import background, loopback_env, workspace_env
+from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
 from conftest import colcon, requires_ros
-from harness.ros_env import background, loopback_env, workspace_env
-from harness.system import LifecycleDriver, wait_until
 
 pytestmark = [pytest.mark.integration, requires_ros]
 

@@ -18,12 +18,11 @@ from pathlib import Path
 import sys
 import time
 
-REPO = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(REPO / 'tests'))
-
-from harness import ros_env  # noqa: E402
-from harness.system import (  # noqa: E402
+from colcon_robmosys.devtools import ros_env
+from colcon_robmosys.devtools.system import (
     activation_waves, LifecycleDriver, read_activate_after, read_launch_file)
+
+REPO = Path(__file__).resolve().parent.parent
 
 WORKSPACE = REPO / 'test_workspace'
 

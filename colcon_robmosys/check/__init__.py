@@ -10,7 +10,7 @@ import hashlib
 from pathlib import Path
 from typing import Iterable
 
-from colcon_robmosys.check.activities import activity_problems
+from colcon_robmosys.check.activities import activity_problems, port_problems
 from colcon_robmosys.check.cache import CheckedFile, file_key, ModelCache
 from colcon_robmosys.check.cycles import CycleRules
 from colcon_robmosys.check.index import InterfaceIndex
@@ -18,15 +18,16 @@ from colcon_robmosys.check.types import TypeRules
 from colcon_robmosys.check.wiring import WiringRules
 from colcon_robmosys.errors import Diagnostic, RobmosysError
 from colcon_robmosys.model.build import FileBuilder
+from colcon_robmosys.model.build_base import MODEL_SECTIONS
 from colcon_robmosys.model.files import (
     find_model_files, model_dependencies, packages_of)
 from colcon_robmosys.model.loader import (
     load_bytes, load_file, LoadedFile, read_model_bytes)
-from colcon_robmosys.model.schema import check_structure
+from colcon_robmosys.model.schema import structure_problems
 from colcon_robmosys.model.types import (
-    Component, ModelFile, ServiceDefinition, Workspace)
+    Component, ModelFile, ServiceDefinition, System, Workspace)
 
-__all__ = ['check_file', 'check_model_file', 'find_model_files',
+__all__ = ['check_file', 'check_model_file', 'FileCheck', 'find_model_files',
            'load_model_file', 'load_workspace', 'LoadResult', 'ModelCache',
            'WorkspaceChecker']
 
@@ -92,31 +93,63 @@ class LoadResult:
             raise RobmosysError(self.errors)
 
 
+@dataclass(frozen=True)
+class FileCheck:
+    """What the rules of a single file found in it."""
+
+    #: the models that passed, whole
+    model_file: ModelFile
+    diagnostics: tuple[Diagnostic, ...]
+    #: the packages, with their kinds, of the models that did not pass
+    broken: tuple[tuple[str, str], ...]
+
+
 def load_model_file(path: Path) -> ModelFile:
     """Load and check a single file on its own.
 
     :raises RobmosysError: with every problem of the file
     """
-    return check_model_file(load_file(path))
+    checked = check_model_file(load_file(path))
+    if checked.diagnostics:
+        raise RobmosysError(checked.diagnostics)
+    return checked.model_file
 
 
-def check_model_file(loaded: LoadedFile) -> ModelFile:
-    """Check a loaded file on its own.
+def check_model_file(loaded: LoadedFile) -> FileCheck:
+    """Run the rules of a single file: the schema, then each model's own.
 
-    :raises RobmosysError: with every problem of the file
+    A model whose part of the file breaks a rule is left out; the others
+    are kept for the rules of the workspace, so that an error in one model
+    hides no error of another.
     """
-    problems = check_structure(loaded)
-    if problems:
-        raise RobmosysError(problems)
+    located = structure_problems(loaded)
+    diagnostics = [d for _, d in located]
+    everything = packages_of(loaded.data)
+    if any(len(p) < 2 or p[0] not in MODEL_SECTIONS for p, _ in located):
+        # the file as a whole (its version, its defaults) is broken
+        return FileCheck(ModelFile(str(loaded.path)), tuple(diagnostics),
+                         tuple(everything))
+    skip = frozenset((str(p[0]), int(p[1])) for p, _ in located)
     builder = FileBuilder(loaded)
-    model_file = builder.build()
-    problems = list(builder.diagnostics)
-    if not problems:
-        for component in model_file.components:
-            problems += activity_problems(component)
-    if problems:
-        raise RobmosysError(problems)
-    return model_file
+    models = builder.build_models(skip)
+    diagnostics += builder.diagnostics
+    broken = set(skip) | builder.broken_models
+    for key, model in models:
+        if isinstance(model, Component):
+            problems = port_problems(model) + activity_problems(model)
+            diagnostics += problems
+            if problems:
+                broken.add(key)
+    kept = [m for key, m in models if key not in broken]
+    kept_packages = {m.package for m in kept}
+    return FileCheck(
+        ModelFile(
+            str(loaded.path),
+            tuple(m for m in kept if isinstance(m, ServiceDefinition)),
+            tuple(m for m in kept if isinstance(m, Component)),
+            tuple(m for m in kept if isinstance(m, System))),
+        tuple(diagnostics),
+        tuple(p for p in everything if p[0] not in kept_packages))
 
 
 def check_file(path: Path, raw: bytes) -> CheckedFile:
@@ -125,12 +158,8 @@ def check_file(path: Path, raw: bytes) -> CheckedFile:
         loaded = load_bytes(raw, path)
     except RobmosysError as exc:
         return CheckedFile(None, exc.diagnostics)
-    try:
-        return CheckedFile(check_model_file(loaded))
-    except RobmosysError as exc:
-        # read once: a large file is slow to parse
-        return CheckedFile(None, exc.diagnostics,
-                           tuple(packages_of(loaded.data)))
+    checked = check_model_file(loaded)
+    return CheckedFile(checked.model_file, checked.diagnostics, checked.broken)
 
 
 def load_workspace(paths: Iterable[Path],
@@ -161,8 +190,9 @@ def load_workspace(paths: Iterable[Path],
             if cache is not None:
                 cache.put(key, checked)
         if checked.model_file is not None:
+            # the models that passed: the rules of the workspace check them
             files.append(checked.model_file)
-        else:
+        if checked.diagnostics:
             diagnostics.extend(checked.diagnostics)
             broken[str(path)] = list(checked.declared)
     if cache is not None:

@@ -10,8 +10,26 @@ so every activity that runs it must hand it the same thing.
 from __future__ import annotations
 
 from colcon_robmosys.errors import Diagnostic
-from colcon_robmosys.mapping.portkinds import port_kind
-from colcon_robmosys.model.types import Component
+from colcon_robmosys.mapping.portkinds import port_kind, PORT_KINDS
+from colcon_robmosys.model.types import Component, Pattern
+
+#: the order patterns are named in
+_PATTERN_ORDER = [p.value for p in Pattern]
+
+
+def port_problems(component: Component) -> list[Diagnostic]:
+    """Return the ports that set what their ROS 2 entity has no use for."""
+    problems = []
+    for port in component.ports:
+        if port.qos_location is not None and not port_kind(port).topic_qos:
+            with_qos = sorted({k.pattern.value for k in PORT_KINDS.values()
+                               if k.topic_qos}, key=_PATTERN_ORDER.index)
+            problems.append(Diagnostic(
+                port.qos_location, f"port '{port.name}': {port.pattern.value} "
+                'ports use the QoS of ROS 2 services and actions; '
+                f"'qos' applies to {', '.join(with_qos[:-1])} and {with_qos[-1]} "
+                'ports'))
+    return problems
 
 
 def activity_problems(component: Component) -> list[Diagnostic]:

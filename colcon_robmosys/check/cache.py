@@ -64,11 +64,11 @@ def file_key(path: Path, raw: bytes) -> str:
 class CheckedFile:
     """What loading and checking one model file on its own gave."""
 
-    #: the models, if the file has no problem of its own
+    #: the models that passed its own rules (None: the file cannot be read)
     model_file: ModelFile | None
     #: its problems, if any
     diagnostics: tuple[Diagnostic, ...] = ()
-    #: the packages, and their kinds, that a broken file seems to declare
+    #: the packages, and their kinds, of its models that did not pass
     declared: tuple[tuple[str, str], ...] = ()
 
 

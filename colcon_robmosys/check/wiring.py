@@ -11,9 +11,10 @@ from colcon_robmosys.check.context import CheckContext
 from colcon_robmosys.check.qos import qos_incompatibility
 from colcon_robmosys.errors import Location
 from colcon_robmosys.mapping.names import connection_name, node_name
-from colcon_robmosys.model.build import parameter_value_problem
+from colcon_robmosys.mapping.portkinds import port_kind
+from colcon_robmosys.model.parameters import parameter_value_problem
 from colcon_robmosys.model.types import (
-    Component, Connection, Instance, Pattern, Port, PortRef, Role, System)
+    Component, Connection, Instance, Port, PortRef, Role, System)
 
 
 class WiringRules(CheckContext):
@@ -148,7 +149,7 @@ class WiringRules(CheckContext):
         if other_kind != kind:
             self.error(here, f"'{name}' connects {kind} here but "
                        f'{other_kind} at line {where.line}')
-        if port.pattern in (Pattern.QUERY, Pattern.ACTION, Pattern.EVENT):
+        if port_kind(port).unique_server:
             server, where = names.server.setdefault(name, (str(ref), here))
             if server != str(ref):
                 self.error(here, f"'{name}' is served by '{ref}' here and "
@@ -199,9 +200,6 @@ class _Names:
 
 def _writer_reader(a: Port, b: Port) -> tuple[Port | None, Port | None]:
     """Return which port writes and which reads a topic connection."""
-    if a.pattern in (Pattern.QUERY, Pattern.ACTION):
+    if not port_kind(a).topic_qos:
         return None, None
-    provided, required = (a, b) if a.role is Role.PROVIDED else (b, a)
-    if a.pattern is Pattern.SEND:
-        return required, provided
-    return provided, required
+    return (a, b) if port_kind(a).topic_writer else (b, a)

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from colcon_robmosys.generators.plan import (
     files_of, PackagePlan, Row, user_files_of, UserRow)
-from colcon_robmosys.mapping.cpp import CppComponent
+from colcon_robmosys.mapping.cpp_context import CppComponent
 
 _SRC = 'src-gen/{package}'
 _SKEL = 'src-skel/{package}/{cls}_impl'

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from colcon_robmosys.generators.plan import (
     files_of, PackagePlan, Row, user_files_of, UserRow)
-from colcon_robmosys.mapping.python import PyComponent
+from colcon_robmosys.mapping.python_context import PyComponent
 
 _SKEL = 'src-skel/{package}/{cls}_impl_skel.py'
 

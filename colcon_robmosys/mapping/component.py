@@ -15,10 +15,11 @@ from dataclasses import dataclass
 
 from colcon_robmosys.errors import Location, RobmosysError
 from colcon_robmosys.mapping.portkinds import (
-    Delivery, Entity, port_kind, PortKind, Returns)
+    Delivery, Entity, PORT_KINDS, PortKind, Returns)
 from colcon_robmosys.model.files import model_dependencies
 from colcon_robmosys.model.types import (
-    Component, Function, InterfaceRef, Language, Parameter, QoS)
+    Component, Function, InterfaceRef, Language, Parameter, PATTERN_INTERFACE,
+    QoS)
 
 
 @dataclass(frozen=True)
@@ -144,9 +145,16 @@ def plan_component(component: Component) -> ComponentPlan:
     by_trigger = {a.trigger: a for a in component.activities if a.trigger}
     ports = []
     for port in component.ports:
+        kind = PORT_KINDS.get((port.pattern, port.role))
+        if kind is None or port.type.kind is not PATTERN_INTERFACE[port.pattern]:
+            # the schema and the file builder refuse these
+            raise RobmosysError.at(
+                port.location, f"internal error: port '{port.name}' "
+                f'({port.role.value} {port.pattern.value}, {port.type}) has no '
+                'ROS 2 mapping; the check should have refused it')
         activity = by_trigger.get(port.name)
         ports.append(PortPlan(
-            port.name, port_kind(port), port.type, port.qos,
+            port.name, kind, port.type, port.qos,
             port.description or f'{port.role.value.capitalize()} '
             f'{port.pattern.value} port ({port.type}).',
             activity.name if activity else None,

@@ -88,6 +88,12 @@ class PortKind:
     uses_actions: bool = False
     #: the runtime class it is an instance of (clients, events), if any
     runtime_class: bool = False
+    #: of the two ends of a connection on a topic, this one writes it
+    topic_writer: bool = False
+    #: the server of a name: a system connects one such port per name
+    unique_server: bool = False
+    #: the data of its pattern flows to the provided end (diagram arrows)
+    data_to_provider: bool = False
 
     @property
     def triggers(self) -> bool:
@@ -99,29 +105,35 @@ _COMMOBJ = ('commobj',)
 
 _ROWS = (
     PortKind(Pattern.PUSH, Role.PROVIDED, Entity.PUBLISHER, None, '', (),
-             Returns.NOTHING, topic_qos=True),
+             Returns.NOTHING, topic_qos=True, topic_writer=True),
     PortKind(Pattern.PUSH, Role.REQUIRED, Entity.SUBSCRIPTION, Delivery.MESSAGE,
              'each message received', _COMMOBJ, Returns.NOTHING, topic_qos=True),
     PortKind(Pattern.SEND, Role.REQUIRED, Entity.PUBLISHER, None, '', (),
-             Returns.NOTHING, topic_qos=True),
+             Returns.NOTHING, topic_qos=True, topic_writer=True,
+             data_to_provider=True),
     PortKind(Pattern.SEND, Role.PROVIDED, Entity.SUBSCRIPTION, Delivery.MESSAGE,
-             'each message received', _COMMOBJ, Returns.NOTHING, topic_qos=True),
+             'each message received', _COMMOBJ, Returns.NOTHING, topic_qos=True,
+             data_to_provider=True),
     PortKind(Pattern.QUERY, Role.PROVIDED, Entity.SERVICE, Delivery.REQUEST,
              'each request, returning the answer', ('request', 'response'),
-             Returns.ANSWER, needs_handler=True, one_function=True),
+             Returns.ANSWER, needs_handler=True, one_function=True,
+             unique_server=True, data_to_provider=True),
     PortKind(Pattern.QUERY, Role.REQUIRED, Entity.CLIENT, Delivery.ANSWER,
              'each answer of an asynchronous call', _COMMOBJ, Returns.NOTHING,
-             own_group=True, runtime_class=True),
+             own_group=True, runtime_class=True, data_to_provider=True),
     PortKind(Pattern.ACTION, Role.PROVIDED, Entity.ACTION_SERVER, Delivery.GOAL,
              'each goal, returning the result', ('goal_handle',), Returns.RESULT,
-             needs_handler=True, one_function=True, uses_actions=True),
+             needs_handler=True, one_function=True, uses_actions=True,
+             unique_server=True, data_to_provider=True),
     PortKind(Pattern.ACTION, Role.REQUIRED, Entity.ACTION_CLIENT, Delivery.RESULT,
              'each result of a goal sent', _COMMOBJ, Returns.NOTHING,
-             own_group=True, uses_actions=True, runtime_class=True),
+             own_group=True, uses_actions=True, runtime_class=True,
+             data_to_provider=True),
     PortKind(Pattern.EVENT, Role.PROVIDED, Entity.EVENT_SERVER, Delivery.ACTIVATION,
              'the condition of each activation', ('activation', 'event'),
              Returns.CONDITION, one_function=True, topic_qos=True,
-             uses_actions=True, runtime_class=True),
+             uses_actions=True, runtime_class=True, topic_writer=True,
+             unique_server=True),
     PortKind(Pattern.EVENT, Role.REQUIRED, Entity.EVENT_CLIENT, Delivery.EVENT,
              'each event that fires', _COMMOBJ, Returns.NOTHING, topic_qos=True,
              own_group=True, uses_actions=True, runtime_class=True),

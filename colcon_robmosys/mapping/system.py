@@ -11,15 +11,13 @@ from typing import Any
 from colcon_robmosys.mapping.common import (
     Banner, banner_of, package_xml, PackageXml, unique)
 from colcon_robmosys.mapping.names import connection_name, node_name
-from colcon_robmosys.model.build import freeze_parameter_value
+from colcon_robmosys.mapping.portkinds import port_kind
+from colcon_robmosys.model.parameters import freeze_parameter_value
 from colcon_robmosys.model.types import (
-    Component, Connection, Instance, Pattern, PortRef, Role, System,
+    Component, Connection, Instance, PortRef, Role, System,
     Workspace)
 
 PARAMS_FILE = 'cfg/params.yaml'
-
-#: The patterns whose data goes from the required port to the provided one.
-_TO_PROVIDER = (Pattern.SEND, Pattern.QUERY, Pattern.ACTION)
 
 
 @dataclass(frozen=True)
@@ -230,7 +228,7 @@ def _edges(system: System, components: dict[str, Component],
         assert port is not None
         # arrows follow the data: from the publisher of push and event, to
         # the server of send, query and action
-        if port.pattern in _TO_PROVIDER:
+        if port_kind(port).data_to_provider:
             source, target = target, source
         edges.append(DiagramEdge(
             source.instance, source.port, target.instance, target.port,

@@ -5,67 +5,25 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
-import re
 from typing import Any
 
 import yaml
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
+from colcon_robmosys.model.loaded import (
+    LoadedFile, MAX_ALIASED_VALUES, MAX_MODEL_BYTES, MAX_MODEL_DEPTH,
+    MAX_MODEL_NODES, NodePath, NOT_PRINTABLE, RawData)
+from colcon_robmosys.model.loader_fast import CLoader, FastBuilder, Unusual
 
-#: A path into the loaded data: mapping keys and sequence indexes.
-NodePath = tuple[str | int, ...]
-
-#: Model files larger than this are refused before parsing. PyYAML parses
-#: some 150 kB a second: a megabyte keeps the worst case to seconds, and is
-#: far more than a model of even a large package needs.
-MAX_MODEL_BYTES = 1024 * 1024
-
-#: How many values (mappings, lists, scalars) a model file may hold: about
-#: four seconds of parsing, however short the values are.
-MAX_MODEL_NODES = 100_000
-
-#: How deeply mappings and lists may nest: a model nests some ten levels;
-#: thousands would exhaust Python's stack in the YAML composer.
-MAX_MODEL_DEPTH = 64
-
-#: How many values aliases may repeat in all: the data is shared, but every
-#: later step (validation, messages, generated files) walks it expanded.
-MAX_ALIASED_VALUES = 100_000
-
-#: What YAML allows in a file (YAML 1.1, 5.1): an escape in a quoted
-#: string could still produce anything else, which no generated file can
-#: carry (XML has no NUL, UTF-8 no lone surrogate).
-_NOT_PRINTABLE = re.compile(
-    '[^\t\n\r\x20-\x7e\x85\xa0-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]')
+__all__ = ['LoadedFile', 'load_bytes', 'load_file', 'load_text',
+           'load_text_completely', 'MAX_ALIASED_VALUES', 'MAX_MODEL_BYTES',
+           'MAX_MODEL_DEPTH', 'MAX_MODEL_NODES', 'NodePath', 'RawData',
+           'read_model_bytes']
 
 _MERGE_TAG = 'tag:yaml.org,2002:merge'
 _MAP_TAG = 'tag:yaml.org,2002:map'
 _SEQ_TAG = 'tag:yaml.org,2002:seq'
-
-
-@dataclass(frozen=True)
-class LoadedFile:
-    """The plain data of one model file and where each of its nodes stands."""
-
-    path: Path
-    data: Any
-    value_marks: dict[NodePath, Location]
-    key_marks: dict[NodePath, Location]
-
-    def location(self, node_path: NodePath, *, key: bool = False) -> Location:
-        """Return the location of a node, or of the closest known parent.
-
-        :param key: point at the mapping key of the node instead of its value
-        """
-        marks = self.key_marks if key else self.value_marks
-        path = tuple(node_path)
-        while path:
-            if path in marks:
-                return marks[path]
-            path = path[:-1]
-        return self.value_marks.get((), Location(str(self.path), 1, 1))
 
 
 class _LimitedLoader(yaml.SafeLoader):
@@ -81,7 +39,7 @@ class _LimitedLoader(yaml.SafeLoader):
         self._depth += 1
         self._nodes += 1
         if self._depth > MAX_MODEL_DEPTH or self._nodes > MAX_MODEL_NODES:
-            mark = self.peek_event().start_mark
+            mark = self.peek_event().start_mark  # type: ignore[no-untyped-call]
             raise RobmosysError.at(
                 Location(str(self._path), mark.line + 1, mark.column + 1),
                 f'the model nests mappings and lists more than '
@@ -186,14 +144,14 @@ class _Builder:
             return items
         value = self._loader.construct_object(node, deep=True)
         if isinstance(value, str) and self._unprintable(node, value):
-            value = _NOT_PRINTABLE.sub('\ufffd', value)
+            value = NOT_PRINTABLE.sub('\ufffd', value)
         self._built[id(node)] = value
         self._sizes[id(node)] = 1
         return value
 
     def _unprintable(self, node: yaml.Node, text: str) -> bool:
         """Report a character of a string that YAML does not allow raw."""
-        found = _NOT_PRINTABLE.search(text)
+        found = NOT_PRINTABLE.search(text)
         if found is None:
             return False
         self.diagnostics.append(Diagnostic(
@@ -246,181 +204,16 @@ def _yaml_kind(value: Any) -> str:
     return f'a {type(value).__name__}'
 
 
-#: libyaml's parser, where PyYAML was built with it (about ten times as
-#: fast as the Python one); None where it was not.
-_CLoader: Any = getattr(yaml, 'CSafeLoader', None)
-
-_STR_TAG = 'tag:yaml.org,2002:str'
-#: What PyYAML's reader refuses in a text (yaml.reader.Reader.NON_PRINTABLE).
-_READER_REFUSES = re.compile(
-    '[^\x09\x0A\x0D\x20-\x7E\x85\xA0-\uD7FF\uE000-\uFFFD'
-    '\U00010000-\U0010ffff]')
-
-
-class _Unusual(Exception):
-    """The text needs the complete loader: an error, an alias, a merge..."""
-
-
-class _FastBuilder:
-    """Build plain data and marks straight from libyaml's events.
-
-    Only for the texts models consist of: mappings with string keys, lists,
-    scalars, no anchor or alias, no problem at all. Anything else raises
-    :class:`_Unusual`, and the complete loader (which reports every problem
-    with its location) loads the text instead; so both give the same
-    result, the fast one only sooner. Events come in a flat stream, built
-    with an explicit stack: no recursion, however deep the text nests.
-    """
-
-    def __init__(self, path: Path, text: str):
-        self._display = str(path)
-        self._text = text
-        self._lines: list[str] | None = None
-        self.value_marks: dict[NodePath, Location] = {}
-        self.key_marks: dict[NodePath, Location] = {}
-
-    def _value_location(self, event: Any) -> Location:
-        mark = event.start_mark
-        if event.style not in ('|', '>'):
-            return Location(self._display, mark.line + 1, mark.column + 1)
-        # as _Builder.value_location: a block's text starts on the next line
-        if self._lines is None:
-            self._lines = self._text.split('\n')
-        first = mark.line + 1
-        indent = next((len(line) - len(line.lstrip(' '))
-                       for line in self._lines[first:event.end_mark.line + 1]
-                       if line.strip()), mark.column)
-        return Location(self._display, first + 1, indent + 1)
-
-    def build(self) -> Any:
-        """Return the data of the text's one document.
-
-        :raises _Unusual: if the text needs the complete loader
-        """
-        text = self._text
-        # a byte order mark shifts libyaml's columns; PyYAML refuses tabs in
-        # places where libyaml takes them, and characters libyaml reads
-        if text.startswith('\ufeff') or '\t' in text or \
-                _READER_REFUSES.search(text):
-            raise _Unusual()
-        loader = _CLoader(text)
-        try:
-            return self._build(loader)
-        except yaml.YAMLError:
-            raise _Unusual() from None
-        finally:
-            loader.dispose()
-
-    def _build(self, loader: Any) -> Any:  # noqa: C901 - one loop over events
-        get_event = loader.get_event
-        display = self._display
-        value_marks, key_marks = self.value_marks, self.key_marks
-        get_event()  # stream start
-        if not isinstance(get_event(), yaml.DocumentStartEvent):
-            raise _Unusual()  # no document: the complete loader says so
-        # per open collection: its data, its path, and for a mapping the key
-        # waiting for its value (None: the next scalar is a key)
-        stack: list[tuple[Any, NodePath, list[Any]]] = []
-        nodes = 0
-        root: Any = None
-        while True:
-            event = get_event()
-            kind = type(event)
-            if kind is yaml.MappingEndEvent or kind is yaml.SequenceEndEvent:
-                stack.pop()
-                if not stack:
-                    break
-                continue
-            if kind is yaml.AliasEvent or event.anchor is not None or \
-                    event.tag is not None:
-                # aliases, anchors and tags: seldom in a model, and where
-                # libyaml and PyYAML differ (e.g. a lone '!')
-                raise _Unusual()
-            nodes += 1
-            if nodes > MAX_MODEL_NODES or len(stack) >= MAX_MODEL_DEPTH:
-                raise _Unusual()
-            if stack:
-                container, path, pending = stack[-1]
-                if type(container) is dict:
-                    if pending[0] is None:
-                        # a key: a plain string, said once
-                        if kind is not yaml.ScalarEvent or \
-                                _scalar_tag(loader, event) != _STR_TAG or \
-                                event.value in container or \
-                                _NOT_PRINTABLE.search(event.value):
-                            raise _Unusual()
-                        pending[0] = event
-                        continue
-                    key_event = pending[0]
-                    pending[0] = None
-                    key = key_event.value
-                    here = path + (key,)
-                    mark = key_event.start_mark
-                    key_marks[here] = Location(
-                        display, mark.line + 1, mark.column + 1)
-                else:
-                    here = path + (len(container),)
-                    mark = event.start_mark
-                    key_marks[here] = Location(
-                        display, mark.line + 1, mark.column + 1)
-            else:
-                container, here = None, ()
-            if kind is yaml.ScalarEvent:
-                value_marks[here] = self._value_location(event)
-                value = _scalar(loader, event)
-            elif kind is yaml.MappingStartEvent or \
-                    kind is yaml.SequenceStartEvent:
-                mark = event.start_mark
-                value_marks[here] = Location(
-                    display, mark.line + 1, mark.column + 1)
-                value = {} if kind is yaml.MappingStartEvent else []
-            else:
-                raise _Unusual()
-            if container is None:
-                root = value
-            elif type(container) is dict:
-                container[here[-1]] = value
-            else:
-                container.append(value)
-            if kind is not yaml.ScalarEvent:
-                stack.append((value, here, [None]))
-            elif container is None:
-                break
-        get_event()  # document end
-        if not isinstance(get_event(), yaml.StreamEndEvent):
-            raise _Unusual()  # another document: the complete loader says so
-        return root
-
-
-def _scalar_tag(loader: Any, event: Any) -> str:
-    # what the implicit resolvers make of an untagged scalar
-    return loader.resolve(yaml.ScalarNode, event.value, event.implicit)
-
-
-def _scalar(loader: Any, event: Any) -> Any:
-    """Construct a scalar as the complete loader does."""
-    tag = _scalar_tag(loader, event)
-    if tag == _STR_TAG:
-        value = event.value
-        if _NOT_PRINTABLE.search(value):
-            raise _Unusual()
-        return value
-    # what SafeConstructor makes of it; an unknown tag raises a YAMLError
-    return loader.construct_object(yaml.ScalarNode(
-        tag, event.value, event.start_mark, event.end_mark, event.style),
-        deep=True)
-
-
 def load_text(text: str, path: Path) -> LoadedFile:
     """Parse the text of a model file.
 
     :raises RobmosysError: for YAML syntax errors and ambiguous keys
     """
-    if _CLoader is not None:
-        fast = _FastBuilder(path, text)
+    if CLoader is not None:
+        fast = FastBuilder(path, text)
         try:
             data = fast.build()
-        except _Unusual:
+        except Unusual:
             pass
         else:
             return LoadedFile(path, data, fast.value_marks, fast.key_marks)

@@ -16,7 +16,7 @@ from jsonschema.exceptions import ValidationError
 from jsonschema.validators import extend
 
 from colcon_robmosys.errors import Diagnostic
-from colcon_robmosys.model.loader import LoadedFile
+from colcon_robmosys.model.loader import LoadedFile, NodePath
 
 SCHEMA_FILE = 'robmosys.schema.json'
 
@@ -32,7 +32,8 @@ def schema() -> dict[str, Any]:
     """Return the JSON Schema of robmosys.yaml files."""
     text = resources.files('colcon_robmosys.model').joinpath(
         SCHEMA_FILE).read_text(encoding='utf-8')
-    return json.loads(text)
+    loaded: dict[str, Any] = json.loads(text)
+    return loaded
 
 
 @lru_cache(maxsize=None)
@@ -82,7 +83,7 @@ def is_valid(data: Any) -> bool:
     """Say whether data passes the schema, as fast as can be."""
     fast = _fast_check()
     if fast is None:
-        return _validator().is_valid(data)
+        return bool(_validator().is_valid(data))
     try:
         fast(data)
     except Exception:  # noqa: B902 - any failure: let jsonschema tell
@@ -105,7 +106,7 @@ def _describe(value: Any) -> str:
     return repr(value)
 
 
-def _subject(path: tuple) -> str:
+def _subject(path: tuple[Any, ...]) -> str:
     for depth in range(len(path) - 1, -1, -1):
         if isinstance(path[depth], str):
             if depth < len(path) - 1:
@@ -200,6 +201,12 @@ def _leaves(error: ValidationError) -> Iterator[ValidationError]:
 
 def check_structure(loaded: LoadedFile) -> list[Diagnostic]:
     """Check a loaded file against the schema; return every problem."""
+    return [d for _, d in structure_problems(loaded)]
+
+
+def structure_problems(loaded: LoadedFile
+                       ) -> list[tuple[NodePath, Diagnostic]]:
+    """Check a loaded file against the schema; return every problem and its node."""
     if is_valid(loaded.data):
         return []
     diagnostics = []
@@ -217,6 +224,6 @@ def check_structure(loaded: LoadedFile) -> list[Diagnostic]:
                 pass  # the path of the error is the key itself
             elif about_key:
                 path = tuple(path) + (leaf.instance,)
-            diagnostics.append(Diagnostic(
-                loaded.location(path, key=about_key), message))
+            diagnostics.append((tuple(path), Diagnostic(
+                loaded.location(path, key=about_key), message)))
     return diagnostics

@@ -1,0 +1,215 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""
+The environment in which tests, demos and benchmarks run ROS 2 and colcon.
+
+The venv that runs the tests is the ROS 2 prefix (PyPI's ``ros-*`` wheels, fixed up by
+``tools/bootstrap_ros_wheels.py``). Every DDS participant stays on loopback through
+``fastdds_loopback.xml`` (next to this module), and every test gets its own ``ROS_DOMAIN_ID``.
+Every process started here has a timeout, and is killed with its children.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping, Sequence
+import contextlib
+import fcntl
+import itertools
+import os
+from pathlib import Path
+import signal
+import subprocess
+import sys
+import tempfile
+from typing import Any, IO
+
+Command = Sequence[str | os.PathLike[str]]
+
+FASTDDS_PROFILE: Path = Path(__file__).resolve().parent / 'fastdds_loopback.xml'
+
+# Variables that would widen discovery beyond this machine or replace our profile.
+_NON_LOCAL = (
+    'ROS_LOCALHOST_ONLY',  # deprecated; conflicts with ROS_AUTOMATIC_DISCOVERY_RANGE
+    'ROS_STATIC_PEERS',
+    'ROS_DISCOVERY_SERVER',
+    'FASTRTPS_DEFAULT_PROFILES_FILE',  # the Fast DDS 2 name of the profile variable
+    'FASTDDS_ENVIRONMENT_FILE',
+)
+
+# ROS 2 documents 0..101 as the domain ids whose ports stay clear of Linux's
+# ephemeral port range; 0 is everyone's default, so tests avoid it.
+_DOMAIN_IDS = 101
+_domain_counter = itertools.count()
+_domain_locks: dict[int, IO[str]] = {}
+
+
+def ros_prefix() -> Path:
+    """Return the ROS 2 prefix: the venv of the running interpreter."""
+    return Path(sys.prefix)
+
+
+def _path_list(first: Sequence[Path | str], rest: str | None) -> str:
+    """Join ``first`` and then the entries of ``rest`` into a path list, without duplicates."""
+    entries = [str(p) for p in first] + (rest or '').split(os.pathsep)
+    return os.pathsep.join(dict.fromkeys(e for e in entries if e))
+
+
+def loopback_env(domain_id: int, base: Mapping[str, str] | None = None,
+                 underlays: Sequence[Path] = ()) -> dict[str, str]:
+    """
+    Return a copy of ``base`` (default: ``os.environ``) that keeps ROS 2 on loopback.
+
+    :param domain_id: the ``ROS_DOMAIN_ID``, see :func:`free_domain_id`
+    :param underlays: prefixes searched before the ROS prefix, first one first
+    """
+    if not 0 <= domain_id <= 232:
+        raise ValueError(f'ROS_DOMAIN_ID {domain_id} is out of range 0..232')
+    # LD_LIBRARY_PATH and _ROS_WHEELS_BOOTSTRAP_COMPLETE pass through: a Python child
+    # that finds the guard set skips the wheels' re-exec, which would reorder every
+    # LD_LIBRARY_PATH entry at random (it goes through a set), overlays included.
+    env = dict(os.environ if base is None else base)
+    for name in _NON_LOCAL:
+        env.pop(name, None)
+    prefix = ros_prefix()
+    # The ROS prefix goes before what the caller had: a ROS install sourced in
+    # the caller's shell must not shadow the venv, but may add what it lacks.
+    for name in ('CMAKE_PREFIX_PATH', 'AMENT_PREFIX_PATH'):
+        env[name] = _path_list([*underlays, prefix], env.get(name))
+    # Vendored tools (uncrustify for ament_uncrustify) live in opt/<vendor>/bin.
+    env['PATH'] = _path_list([prefix / 'bin', *sorted(prefix.glob('opt/*/bin'))], env.get('PATH'))
+    env.update({
+        'FASTDDS_DEFAULT_PROFILES_FILE': str(FASTDDS_PROFILE),
+        'RMW_IMPLEMENTATION': 'rmw_fastrtps_cpp',
+        'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST',
+        'ROS_DOMAIN_ID': str(domain_id),
+        'PYTHONUNBUFFERED': '1',
+        'RCUTILS_COLORIZED_OUTPUT': '0',
+    })
+    return env
+
+
+def workspace_env(install_dir: Path, env: Mapping[str, str]) -> dict[str, str]:
+    """
+    Return ``env`` after sourcing ``install_dir/local_setup.sh`` with ``sh``.
+
+    Sourcing the script is what a user does, so the test sees what the user sees,
+    hooks (``.dsv``/``.sh``) included. ``COLCON_CURRENT_PREFIX`` makes a moved install
+    work. Raises :class:`RuntimeError` with the script's output if sourcing fails.
+    """
+    install_dir = Path(install_dir).resolve()
+    script = install_dir / 'local_setup.sh'
+    if not script.is_file():
+        raise FileNotFoundError(script)
+    env_in = dict(env, COLCON_CURRENT_PREFIX=str(install_dir))
+    result = run(['sh', '-c', '. "$1" && env -0', 'sh', str(script)],
+                 env=env_in, timeout=60, binary=True)
+    if result.returncode != 0:
+        raise RuntimeError(f'sourcing {script} failed ({result.returncode}):\n'
+                           + result.stderr.decode(errors='replace'))
+    out: dict[str, str] = {}
+    for item in result.stdout.decode().split('\0'):
+        name, sep, value = item.partition('=')
+        if sep:
+            out[name] = value
+    # Drop what the shell itself adds; keep the caller's values for the rest.
+    for name in ('_', 'SHLVL', 'PWD', 'OLDPWD', 'COLCON_CURRENT_PREFIX'):
+        out.pop(name, None)
+        if name in env:
+            out[name] = env[name]
+    return out
+
+
+def free_domain_id() -> int:
+    """
+    Return a ``ROS_DOMAIN_ID`` in 1..101 that no other live process here holds.
+
+    The sequence starts at an offset taken from the pid and steps by a counter, so
+    concurrent pytest processes start apart; a lock file per id (held until this
+    process exits) makes sure they never share one. After 101 ids a process reuses
+    its own, which is safe because its earlier tests stopped their processes.
+    """
+    lock_dir = Path(tempfile.gettempdir()) / 'colcon-robmosys-domain-ids'
+    lock_dir.mkdir(exist_ok=True)
+    offset = os.getpid() * 37  # 37: consecutive pids start far apart
+    for _ in range(_DOMAIN_IDS):
+        domain_id = 1 + (offset + next(_domain_counter)) % _DOMAIN_IDS
+        if domain_id in _domain_locks:
+            return domain_id
+        handle = open(lock_dir / f'{domain_id}.lock', 'a')
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            handle.close()
+            continue
+        _domain_locks[domain_id] = handle
+        return domain_id
+    raise RuntimeError(f'all ROS domain ids 1..{_DOMAIN_IDS} are held by other processes')
+
+
+def _kill_group(proc: subprocess.Popen[Any]) -> None:
+    """Kill ``proc`` and everything it started (it leads its own session)."""
+    with contextlib.suppress(ProcessLookupError):
+        os.killpg(proc.pid, signal.SIGKILL)
+
+
+def run(cmd: Command, *, env: Mapping[str, str], timeout: float,
+        cwd: Path | str | None = None, binary: bool = False) -> subprocess.CompletedProcess[Any]:
+    """
+    Run ``cmd`` to completion and capture its output (text unless ``binary``).
+
+    On timeout the command and all its children are killed and
+    :class:`subprocess.TimeoutExpired` is raised with the output so far.
+    """
+    with subprocess.Popen(cmd, env=dict(env), cwd=cwd, text=not binary,
+                          stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, start_new_session=True) as proc:
+        try:
+            stdout, stderr = proc.communicate(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            _kill_group(proc)
+            stdout, stderr = proc.communicate()
+            raise subprocess.TimeoutExpired(proc.args, timeout, stdout, stderr) from None
+        except BaseException:  # noqa: B902 - never leave the process group behind
+            _kill_group(proc)
+            raise
+    return subprocess.CompletedProcess(proc.args, proc.returncode, stdout, stderr)
+
+
+class Background:
+    """A process started by :func:`background`; stdout and stderr go to one file."""
+
+    def __init__(self, proc: subprocess.Popen[Any], log: IO[bytes]) -> None:
+        self.proc = proc
+        self._log = log
+
+    def output(self) -> str:
+        """Return everything the process printed so far."""
+        # pread: the child shares the file offset, so seeking would misplace its writes.
+        fd = self._log.fileno()
+        return os.pread(fd, os.fstat(fd).st_size, 0).decode(errors='replace')
+
+
+@contextlib.contextmanager
+def background(cmd: Command, *, env: Mapping[str, str], stop_timeout: float = 5.0,
+               cwd: Path | str | None = None) -> Iterator[Background]:
+    """
+    Start ``cmd`` for the duration of a ``with`` block, then stop it and its children.
+
+    On exit it gets SIGINT (a ROS node shuts down cleanly), then SIGKILL after
+    ``stop_timeout`` seconds. Output goes to a file, so a chatty process never blocks.
+    """
+    with tempfile.TemporaryFile() as log:
+        proc = subprocess.Popen(cmd, env=dict(env), cwd=cwd, text=True,
+                                stdin=subprocess.DEVNULL, stdout=log,
+                                stderr=subprocess.STDOUT, start_new_session=True)
+        try:
+            yield Background(proc, log)
+        finally:
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(proc.pid, signal.SIGINT)
+            try:
+                proc.wait(timeout=stop_timeout)
+            except subprocess.TimeoutExpired:
+                pass
+            _kill_group(proc)  # children may outlive a leader that exited
+            proc.wait()

@@ -1,0 +1,132 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""The context of the C++ templates: frozen dataclasses, filled by mapping/cpp.py."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Mapping
+
+from colcon_robmosys.mapping.common import Banner, PackageXml
+
+
+@dataclass(frozen=True)
+class CppPort:
+    """A port as the C++ node declares and creates it."""
+
+    name: str
+    entity: str
+    type: str
+    member_type: str
+    description: str
+    #: statements that set each QoS policy (topics and events)
+    qos: tuple[str, ...]
+    activity: str | None
+    functions: tuple[str, ...]
+    own_group: bool
+    call_args: str
+
+
+@dataclass(frozen=True)
+class CppFunction:
+    """A function of the model as a virtual member function."""
+
+    name: str
+    returns: str
+    params: tuple[str, ...]
+    #: what the skeleton does not use yet
+    param_names: tuple[str, ...]
+    #: one parameter a line, when one line would be too long for cpplint
+    wrap: bool
+    code: str | None
+    description: str
+
+
+@dataclass(frozen=True)
+class CppRange:
+    """The range of a numeric parameter's descriptor."""
+
+    field: str
+    cls: str
+    start: str
+    end: str
+    step: str
+
+
+@dataclass(frozen=True)
+class CppParameter:
+    """A parameter: its declaration with a descriptor, and its accessor."""
+
+    name: str
+    cpp_type: str
+    accessor: str
+    default_lines: tuple[str, ...]
+    description_lines: tuple[str, ...]
+    doc: str
+    read_only: str
+    range: CppRange | None
+
+
+@dataclass(frozen=True)
+class CppActivity:
+    """An activity: its callback group, lock and, if periodic, its timer."""
+
+    name: str
+    period: float | None
+    period_ns: int | None
+    functions: tuple[str, ...]
+    description: str
+
+
+@dataclass(frozen=True)
+class CppIncludes:
+    """The includes of the generated header."""
+
+    system: tuple[str, ...]
+    ros: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class CppComponent:
+    """Everything the templates of a C++ component print."""
+
+    banner: Banner
+    package: str
+    cls: str
+    node_cls: str
+    node_header: str
+    description: str
+    includes: CppIncludes
+    ports: tuple[CppPort, ...]
+    #: the ports by entity, so that templates need not compare names
+    publishers: tuple[CppPort, ...]
+    action_servers: tuple[CppPort, ...]
+    activities: tuple[CppActivity, ...]
+    periodic: tuple[CppActivity, ...]
+    functions: tuple[CppFunction, ...]
+    user_functions: tuple[CppFunction, ...]
+    parameters: tuple[CppParameter, ...]
+    #: transition -> functions run on it
+    lifecycle: Mapping[str, tuple[str, ...]]
+    threads: int
+    has_impl: bool
+    #: the runtime classes of ports.hpp it needs
+    uses_ports_header: bool
+    query: bool
+    action: bool
+    event: bool
+    find_packages: tuple[str, ...]
+    link_targets: tuple[str, ...]
+    interface_packages: tuple[str, ...]
+    sources: tuple[str, ...]
+    prefix_requirements: tuple[str, ...]
+    package_xml: PackageXml
+    #: the skeleton or the user's file (impl templates)
+    skeleton: bool = False
+
+    @property
+    def impl_paths(self) -> tuple[str, str]:
+        """Return where the user's header and source live, next to the model."""
+        stem = f'src/{self.package}/{self.cls}_impl'
+        return f'{stem}.hpp', f'{stem}.cpp'

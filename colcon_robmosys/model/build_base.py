@@ -1,0 +1,85 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""What every part of the file builder shares: where problems are recorded."""
+
+from __future__ import annotations
+
+from typing import Iterable
+
+from colcon_robmosys.errors import Diagnostic, Location
+from colcon_robmosys.model import names
+from colcon_robmosys.model.loader import LoadedFile, NodePath, RawData
+from colcon_robmosys.model.types import Maintainer, PackageInfo
+
+DEFAULT_VERSION = '0.1.0'
+
+#: The lists of models of a file; (section, index) names a model in it.
+MODEL_SECTIONS = ('service_definitions', 'components', 'systems')
+
+
+class BuilderBase:
+    """Record problems at the nodes of a loaded file, model by model."""
+
+    def __init__(self, loaded: LoadedFile) -> None:
+        self.loaded = loaded
+        self.diagnostics: list[Diagnostic] = []
+        #: (section, index) of the models a problem was found in
+        self.broken_models: set[tuple[str, int]] = set()
+
+    def error(self, path: NodePath, message: str, *, key: bool = False) -> None:
+        """Record a problem at the node of that path, and its model as broken."""
+        self.diagnostics.append(
+            Diagnostic(self.loaded.location(path, key=key), message))
+        if len(path) >= 2 and path[0] in MODEL_SECTIONS and \
+                isinstance(path[1], int):
+            self.broken_models.add((str(path[0]), path[1]))
+
+    def at(self, path: NodePath, *, key: bool = False) -> Location:
+        """Return the location of a node."""
+        return self.loaded.location(path, key=key)
+
+    def check_identifier(self, path: NodePath, what: str, name: str) -> None:
+        """Report a name that is not a usable identifier."""
+        problem = names.identifier_problem(name)
+        if problem:
+            self.error(path, f"{what} '{name}' {problem}", key=True)
+
+    # package metadata ---------------------------------------------------
+
+    def _info(self, path: NodePath, raw: RawData, defaults: RawData,
+              kind: str) -> PackageInfo:
+        name = raw['package']
+        problem = names.package_problem(name)
+        if problem:
+            self.error(path + ('package',), f"package '{name}' {problem}")
+        maintainers = raw.get('maintainers', defaults.get('maintainers'))
+        license_ = raw.get('license', defaults.get('license'))
+        if not maintainers:
+            self.error(path, f"{kind} '{name}' lacks 'maintainers' (set them "
+                       "in the model or in the file's 'defaults')")
+        if not license_:
+            self.error(path, f"{kind} '{name}' lacks 'license' (set it in the "
+                       "model or in the file's 'defaults')")
+        # the schema makes it a string
+        version: str = raw['version'] if 'version' in raw else \
+            defaults['version'] if 'version' in defaults else DEFAULT_VERSION
+        return PackageInfo(
+            name=name,
+            description=raw.get('description', '').strip() or
+            f'The {kind} {name}, generated from a RobMoSys model.',
+            version=version,
+            license=license_ or '',
+            maintainers=tuple(Maintainer(m['name'], m['email'])
+                              for m in maintainers or ()),
+            depends=tuple(raw.get('depends', ())),
+            model_file=str(self.loaded.path),
+            location=self.at(path + ('package',)),
+        )
+
+
+def choices(known: Iterable[str]) -> str:
+    """Say which names are known, for a message about an unknown one."""
+    if not known:
+        return ' (none is defined)'
+    return f" (known: {', '.join(sorted(known))})"

@@ -1,0 +1,191 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""Build the components of a file: ports, activities, functions, parameters."""
+
+from __future__ import annotations
+
+import ast
+import textwrap
+
+from colcon_robmosys.errors import Diagnostic, Location
+from colcon_robmosys.model import names
+from colcon_robmosys.model.build_base import BuilderBase, choices
+from colcon_robmosys.model.fieldtypes import parse_interface, TypeNameError
+from colcon_robmosys.model.loader import NodePath, RawData
+from colcon_robmosys.model.parameters import (
+    freeze_parameter_value, parameter_value_problem, PARAMETER_ZERO)
+from colcon_robmosys.model.types import (
+    Activity, Component, Function, Language, LIFECYCLE_TRANSITIONS, Parameter,
+    ParameterRange, Pattern, PATTERN_INTERFACE, Port, QoS, Role)
+
+
+class ComponentBuilder(BuilderBase):
+    """Components, with the rules a single component has to follow."""
+
+    def _component(self, path: NodePath, raw: RawData,
+                   defaults: RawData) -> Component:
+        info = self._info(path, raw, defaults, 'component')
+        name = raw['name']
+        self.check_identifier(path + ('name',), 'component name', name)
+        language = Language(raw['language'])
+        ports = tuple(self._port(path + ('ports', n), n, body)
+                      for n, body in raw.get('ports', {}).items())
+        functions = tuple(self._function(path + ('functions', n), n, body,
+                                         language)
+                          for n, body in raw.get('functions', {}).items())
+        function_names = {f.name for f in functions}
+        port_by_name = {p.name: p for p in ports}
+
+        def check_functions(fpath: NodePath, listed: list[str]) -> None:
+            for index, fname in enumerate(listed):
+                if fname not in function_names:
+                    self.error(fpath + (index,), f"unknown function '{fname}'" +
+                               choices(function_names))
+
+        activities = []
+        for aname, body in raw.get('activities', {}).items():
+            apath = path + ('activities', aname)
+            self.check_identifier(apath, 'activity name', aname)
+            period, trigger = body.get('period'), body.get('trigger')
+            if (period is None) == (trigger is None):
+                which = 'not both' if period is not None else 'has neither'
+                self.error(apath, f"activity '{aname}' needs either 'period' "
+                           f"(periodic) or 'trigger' (a port), {which}",
+                           key=True)
+            if trigger is not None and trigger not in port_by_name:
+                self.error(apath + ('trigger',),
+                           f"activity '{aname}' is triggered by unknown "
+                           f"port '{trigger}'{choices(port_by_name)}")
+                trigger = None
+            check_functions(apath + ('functions',), body['functions'])
+            activities.append(Activity(
+                aname, tuple(body['functions']), period, trigger,
+                body.get('description', ''), self.at(apath, key=True),
+                self.at(apath + ('trigger',)), self.at(apath + ('functions',))))
+        lifecycle = []
+        for transition in LIFECYCLE_TRANSITIONS:
+            listed = raw.get('lifecycle', {}).get(transition)
+            if listed is not None:
+                check_functions(path + ('lifecycle', transition), listed)
+                lifecycle.append((transition, tuple(listed)))
+        parameters = tuple(self._parameter(path + ('parameters', n), n, body)
+                           for n, body in raw.get('parameters', {}).items())
+        self._check_member_names(path, ports, functions, activities,
+                                 parameters)
+        return Component(info, name, language, ports, tuple(activities),
+                         functions, parameters, tuple(lifecycle),
+                         self.at(path + ('name',)))
+
+    def _check_member_names(
+            self, path: NodePath, ports: tuple[Port, ...],
+            functions: tuple[Function, ...], activities: list[Activity],
+            parameters: tuple[Parameter, ...]) -> None:
+        owners: dict[str, str] = {}
+        for section, items in (('ports', ports), ('functions', functions),
+                               ('activities', activities)):
+            for item in items:
+                if item.name in owners:
+                    self.error(path + (section, item.name),
+                               f"'{item.name}' already names a "
+                               f'{owners[item.name]} of this component',
+                               key=True)
+                owners.setdefault(item.name, section[:-1].replace('ie', 'y'))
+        for parameter in parameters:
+            self.check_identifier(path + ('parameters', parameter.name),
+                                  'parameter name', parameter.name)
+
+    def _port(self, path: NodePath, name: str, raw: RawData) -> Port:
+        self.check_identifier(path, 'port name', name)
+        pattern, role = Pattern(raw['pattern']), Role(raw['role'])
+        kind = PATTERN_INTERFACE[pattern]
+        try:
+            type_ = parse_interface(raw['type'], kind)
+        except TypeNameError as exc:
+            self.error(path + ('type',), f"port '{name}': {exc}")
+            type_ = parse_interface(_strip_kind(raw['type']), kind)
+        qos_raw = raw.get('qos', {})
+        qos = QoS(**{k.replace('-', '_'): v for k, v in qos_raw.items()})
+        if qos.history == 'keep_all' and qos.depth is not None:
+            self.error(path + ('qos', 'depth'), f"port '{name}': 'depth' has no "
+                       "meaning with history 'keep_all'")
+        return Port(name, pattern, role, type_, qos,
+                    raw.get('description', ''), self.at(path, key=True),
+                    self.at(path + ('qos',)) if qos_raw else None)
+
+    def _function(self, path: NodePath, name: str, raw: RawData | None,
+                  language: Language) -> Function:
+        self.check_identifier(path, 'function name', name)
+        if name in names.NODE_MEMBERS:
+            self.error(path, f"function name '{name}' would hide a member of "
+                       'the lifecycle node class', key=True)
+        raw = raw or {}
+        code = raw.get('code')
+        if code is not None and language is Language.PYTHON:
+            self._check_python(path + ('code',), name, code)
+        return Function(name, code, raw.get('description', ''),
+                        self.at(path, key=True))
+
+    def _check_python(self, path: NodePath, name: str, code: str) -> None:
+        dedented = textwrap.dedent(code)
+        body = textwrap.indent(dedented, '    ')
+        try:
+            ast.parse(f'def {name}(self, *args):\n{body or "    pass"}\n')
+        except SyntaxError as exc:
+            # the location of the code is that of its first line (for a
+            # block scalar too); line 1 of the parsed text is the 'def'
+            start = self.at(path)
+            lines, kept = code.split('\n'), dedented.split('\n')
+            index = min(max((exc.lineno or 2) - 2, 0), len(lines) - 1)
+            column = start.column
+            if exc.offset and exc.lineno and exc.lineno >= 2:
+                removed = len(lines[index]) - len(kept[index])
+                column += max(exc.offset - 1 - 4, 0) + removed
+            self.diagnostics.append(Diagnostic(
+                Location(start.path, start.line + index, column),
+                f"function '{name}': Python syntax error in its code: "
+                f'{exc.msg}'))
+
+    def _parameter(self, path: NodePath, name: str, raw: RawData) -> Parameter:
+        type_name = raw['type']
+        default = raw.get('default', PARAMETER_ZERO[type_name])
+        if 'default' in raw:
+            problem = parameter_value_problem(type_name, default)
+            if problem:
+                self.error(path + ('default',), f"parameter '{name}': "
+                           f'{problem}')
+        range_ = None
+        if 'range' in raw:
+            rpath = path + ('range',)
+            bounds = raw['range']
+            start, end = bounds['from'], bounds['to']
+            step = bounds.get('step', 0)
+            if type_name not in ('int', 'double'):
+                self.error(rpath, f"parameter '{name}': only int and double "
+                           'parameters take a range')
+            elif type_name == 'int' and not all(
+                    isinstance(v, int) for v in (start, end, step)):
+                self.error(rpath, f"parameter '{name}': the range of an int "
+                           'parameter must be made of integers')
+            elif start > end:
+                self.error(rpath, f"parameter '{name}': the range starts "
+                           f'({start}) after it ends ({end})')
+            else:
+                range_ = ParameterRange(start, end, step)
+                if isinstance(default, (int, float)) and \
+                        not isinstance(default, bool) and \
+                        not start <= default <= end:
+                    self.error(path + ('default',), f"parameter '{name}': the "
+                               f'default {default} is out of its range '
+                               f'[{start}, {end}]')
+        return Parameter(
+            name, type_name, freeze_parameter_value(type_name, default),
+            raw.get('description', ''), raw.get('read_only', False), range_,
+            self.at(path, key=True))
+
+    # systems ------------------------------------------------------------
+
+
+def _strip_kind(text: str) -> str:
+    parts = text.split('/')
+    return f'{parts[0]}/{parts[-1]}'

@@ -1,0 +1,152 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""Build the service definitions of a file: structures, fields, constants."""
+
+from __future__ import annotations
+
+from colcon_robmosys.model import names
+from colcon_robmosys.model.build_base import BuilderBase
+from colcon_robmosys.model.fieldtypes import (
+    parse_field_type, TypeNameError, value_problem)
+from colcon_robmosys.model.loader import NodePath, RawData
+from colcon_robmosys.model.types import (
+    Action, CommunicationObject, Constant, Event, Field, FieldType, Query,
+    ServiceDefinition, Structure)
+
+
+class DefinitionBuilder(BuilderBase):
+    """Service definitions: communication objects, queries, actions, events."""
+
+    def _service_definition(self, path: NodePath, raw: RawData,
+                            defaults: RawData) -> ServiceDefinition:
+        info = self._info(path, raw, defaults, 'service definition')
+        package = info.name
+        seen: dict[str, str] = {}
+
+        def named(section: str, name: str) -> None:
+            if not names.INTERFACE_TYPE_RE.match(name):
+                self.error(path + (section, name),
+                           f"'{name}' is not a valid interface name: "
+                           'CamelCase, starting with a capital letter',
+                           key=True)
+            if name in seen:
+                self.error(path + (section, name),
+                           f"'{name}' is already defined in {seen[name]}",
+                           key=True)
+            seen[name] = section
+
+        objects = []
+        for name, body in raw.get('communication_objects', {}).items():
+            named('communication_objects', name)
+            objects.append(CommunicationObject(
+                name, self._structure(
+                    path + ('communication_objects', name), body, package),
+                self.at(path + ('communication_objects', name), key=True)))
+        queries = []
+        for name, body in raw.get('queries', {}).items():
+            named('queries', name)
+            qpath = path + ('queries', name)
+            queries.append(Query(
+                name, body.get('description', ''),
+                self._structure(qpath + ('request',),
+                                body.get('request', {}), package),
+                self._structure(qpath + ('answer',),
+                                body.get('answer', {}), package),
+                self.at(qpath, key=True)))
+        actions = []
+        for name, body in raw.get('actions', {}).items():
+            named('actions', name)
+            apath = path + ('actions', name)
+            goal, result, feedback = (
+                self._structure(apath + (part,), body.get(part, {}), package)
+                for part in ('goal', 'result', 'feedback'))
+            actions.append(Action(
+                name, body.get('description', ''), goal, result, feedback,
+                self.at(apath, key=True)))
+        events = []
+        for name, body in raw.get('events', {}).items():
+            named('events', name)
+            epath = path + ('events', name)
+            if 'single' in ((body.get('activation') or {}).get('fields') or
+                            {}):
+                self.error(epath + ('activation', 'fields', 'single'),
+                           f"event '{name}': the activation field 'single' "
+                           'is reserved: it carries the mode of an '
+                           'activation (single or continuous)', key=True)
+            events.append(Event(
+                name, body.get('description', ''),
+                self._structure(epath + ('activation',),
+                                body.get('activation', {}), package),
+                self._structure(epath + ('event',), body.get('event', {}),
+                                package),
+                self.at(epath, key=True)))
+        if not (objects or queries or actions or events):
+            self.error(path, f"service definition '{package}' defines no "
+                       'communication object, query, action or event')
+        return ServiceDefinition(info, tuple(objects), tuple(queries),
+                                 tuple(actions), tuple(events))
+
+    def _field_type(self, path: NodePath, text: str, package: str,
+                    what: str) -> FieldType | None:
+        try:
+            return parse_field_type(text, package)
+        except TypeNameError as exc:
+            self.error(path, f'{what}: {exc}')
+            return None
+
+    def _structure(self, path: NodePath, raw: RawData | None,
+                   package: str) -> Structure:
+        raw = raw or {}
+        fields = []
+        for name, spec in raw.get('fields', {}).items():
+            fpath = path + ('fields', name)
+            if not names.FIELD_RE.match(name):
+                self.error(fpath, f"field '{name}' is not a valid field name: "
+                           'lower case letters, digits and single '
+                           'underscores, starting with a letter', key=True)
+            elif name in names.CPP_KEYWORDS or name in names.PYTHON_KEYWORDS:
+                self.error(fpath, f"field '{name}' is a C++ or Python keyword",
+                           key=True)
+            if isinstance(spec, str):
+                spec = {'type': spec}
+                tpath = fpath
+            else:
+                tpath = fpath + ('type',)
+            field_type = self._field_type(tpath, spec['type'], package,
+                                          f"field '{name}'")
+            default = spec.get('default')
+            if field_type is not None and 'default' in spec:
+                problem = value_problem(field_type, default)
+                if problem:
+                    self.error(fpath + ('default',),
+                               f"field '{name}': {problem}")
+            if field_type is not None:
+                fields.append(Field(name, field_type, default,
+                                    spec.get('comment', ''),
+                                    self.at(fpath, key=True)))
+        constants = []
+        for name, spec in raw.get('constants', {}).items():
+            cpath = path + ('constants', name)
+            if not names.CONSTANT_RE.match(name):
+                self.error(cpath, f"constant '{name}' is not a valid constant "
+                           'name: upper case letters, digits and single '
+                           'underscores, starting with a letter', key=True)
+            field_type = self._field_type(cpath + ('type',), spec['type'],
+                                          package, f"constant '{name}'")
+            if field_type is None:
+                continue
+            if field_type.message is not None or field_type.array is not None:
+                self.error(cpath + ('type',), f"constant '{name}' must have a "
+                           'primitive, non-array type')
+                continue
+            problem = value_problem(field_type, spec['value'])
+            if problem:
+                self.error(cpath + ('value',), f"constant '{name}': {problem}")
+            constants.append(Constant(name, field_type, spec['value'],
+                                      spec.get('comment', ''),
+                                      self.at(cpath, key=True)))
+        return Structure(raw.get('description', ''), tuple(fields),
+                         tuple(constants))
+
+    # components ---------------------------------------------------------

@@ -1,0 +1,123 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""Components: ports, activities, functions, parameters, lifecycle hooks."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Union
+
+from colcon_robmosys.errors import Location
+from colcon_robmosys.model.base import (
+    InterfaceRef, Language, PackageInfo, Pattern, Role)
+
+
+@dataclass(frozen=True)
+class QoS:
+    """Quality of service of a port, as written in the model."""
+
+    profile: str = 'default'
+    history: str | None = None
+    depth: int | None = None
+    reliability: str | None = None
+    durability: str | None = None
+    deadline: float | None = None
+    lifespan: float | None = None
+    liveliness: str | None = None
+    liveliness_lease_duration: float | None = None
+
+
+@dataclass(frozen=True)
+class Port:
+    """A port of a component."""
+
+    name: str
+    pattern: Pattern
+    role: Role
+    type: InterfaceRef
+    qos: QoS
+    description: str
+    location: Location
+    #: where the model sets its QoS, if it does
+    qos_location: Location | None = None
+
+
+@dataclass(frozen=True)
+class Activity:
+    """An activity: functions run periodically or when a port delivers."""
+
+    name: str
+    functions: tuple[str, ...]
+    period: float | None
+    trigger: str | None
+    description: str
+    location: Location
+    #: where the trigger and the list of functions stand
+    trigger_location: Location | None = None
+    functions_location: Location | None = None
+
+
+@dataclass(frozen=True)
+class Function:
+    """A function of a component, with its body or left to the user."""
+
+    name: str
+    code: str | None
+    description: str
+    location: Location
+
+
+ParameterValue = Union[bool, int, float, str, tuple[Any, ...], None]
+
+
+@dataclass(frozen=True)
+class ParameterRange:
+    """The range a numeric parameter may take."""
+
+    start: float
+    end: float
+    step: float
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A parameter of a component."""
+
+    name: str
+    type: str
+    default: ParameterValue
+    description: str
+    read_only: bool
+    range: ParameterRange | None
+    location: Location
+
+
+@dataclass(frozen=True)
+class Component:
+    """A component: one lifecycle node package."""
+
+    info: PackageInfo
+    name: str
+    language: Language
+    ports: tuple[Port, ...]
+    activities: tuple[Activity, ...]
+    functions: tuple[Function, ...]
+    parameters: tuple[Parameter, ...]
+    #: transition name -> functions run on it, in order
+    lifecycle: tuple[tuple[str, tuple[str, ...]], ...]
+    location: Location
+
+    @property
+    def package(self) -> str:
+        """Return the name of the generated package."""
+        return self.info.name
+
+    def port(self, name: str) -> Port | None:
+        """Return the port of that name, if any."""
+        return next((p for p in self.ports if p.name == name), None)
+
+    @property
+    def user_functions(self) -> tuple[Function, ...]:
+        """Return the functions whose body the user writes."""
+        return tuple(f for f in self.functions if f.code is None)

@@ -1,0 +1,70 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""Systems: component instances wired together."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from colcon_robmosys.errors import Location
+from colcon_robmosys.model.base import PackageInfo
+
+
+@dataclass(frozen=True)
+class Instance:
+    """A component instance in a system."""
+
+    name: str
+    component: str
+    namespace: str
+    parameters: tuple[tuple[str, Any], ...]
+    activate: bool
+    after: tuple[str, ...]
+    description: str
+    location: Location
+    #: where the key of each entry of ``parameters`` stands
+    parameter_locations: tuple[Location, ...] = ()
+
+
+@dataclass(frozen=True)
+class PortRef:
+    """``instance.port`` in a connection."""
+
+    instance: str
+    port: str
+    location: Location
+
+    def __str__(self) -> str:
+        return f'{self.instance}.{self.port}'
+
+
+@dataclass(frozen=True)
+class Connection:
+    """A connection between two ports of two instances."""
+
+    source: PortRef
+    target: PortRef
+    topic: str | None
+    location: Location
+
+
+@dataclass(frozen=True)
+class System:
+    """A system: component instances wired together."""
+
+    info: PackageInfo
+    name: str
+    instances: tuple[Instance, ...]
+    connections: tuple[Connection, ...]
+    location: Location
+
+    @property
+    def package(self) -> str:
+        """Return the name of the generated package."""
+        return self.info.name
+
+    def instance(self, name: str) -> Instance | None:
+        """Return the instance of that name, if any."""
+        return next((i for i in self.instances if i.name == name), None)

@@ -1,0 +1,171 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""The architecture holds: layers import downwards only, modules stay small.
+
+Read from the sources with ast, so that what is tested is what is written
+(docs/architecture.md draws the layers).
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parent.parent
+PACKAGE = REPO / 'colcon_robmosys'
+
+#: The layers, lowest first: each imports only from those before it.
+#: errors.py is the one module every layer shares.
+LAYERS = ('errors', 'model', 'mapping', 'check', 'generators')
+#: The colcon glue, on top; the only importers of colcon_core.
+GLUE = ('package_identification', 'package_discovery', 'task', 'verb')
+#: Tools for developers (tests, benchmarks, the demo): above everything,
+#: imported by nothing of the pipeline.
+DEVTOOLS = ('devtools',)
+#: The robmosys_runtime ament package as package data, and how the glue finds
+#: it: imports nothing of the pipeline, is imported by the glue only.
+RUNTIME = 'runtime'
+#: Sources of the ament package inside it: its own Python module, not ours.
+RUNTIME_PACKAGE = PACKAGE / RUNTIME / 'robmosys_runtime'
+
+MAX_MODULE_LINES = 350
+MAX_TEMPLATE_LINES = 250
+
+#: Templates that hold code the robmosys_runtime package takes over (issue 11,
+#: the runtime part): until it does, they may not grow. Remove each entry as
+#: its template shrinks under MAX_TEMPLATE_LINES.
+RUNTIME_PENDING = {
+    'templates/component_cpp/ports.hpp.jinja': 567,
+    'templates/component_python/node.py.jinja': 536,
+}
+
+
+def _imports(path: Path) -> set[str]:
+    """Return every module a source file imports, absolute names."""
+    tree = ast.parse(path.read_text(encoding='utf-8'), filename=str(path))
+    found = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            found.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom) and node.module:
+            if node.level:
+                raise AssertionError(f'{path}: relative import')
+            found.add(node.module)
+            # `from colcon_robmosys.generators import writer` imports a module
+            found.update(f'{node.module}.{alias.name}' for alias in node.names)
+    return found
+
+
+def _subpackage(path: Path) -> str:
+    relative = path.relative_to(PACKAGE)
+    return relative.parts[0].removesuffix('.py')
+
+
+def _sources(root: Path) -> list[Path]:
+    return sorted(p for p in root.rglob('*.py') if '__pycache__' not in p.parts)
+
+
+def _package_graph() -> dict[str, set[str]]:
+    """Return subpackage (or top-level module) -> those it imports."""
+    graph: dict[str, set[str]] = {}
+    for path in _sources(PACKAGE):
+        if RUNTIME_PACKAGE in path.parents:
+            continue
+        own = _subpackage(path)
+        targets = graph.setdefault(own, set())
+        for module in _imports(path):
+            parts = module.split('.')
+            if parts[0] != 'colcon_robmosys' or len(parts) < 2:
+                continue
+            if (PACKAGE / parts[1]).is_dir() or \
+                    (PACKAGE / f'{parts[1]}.py').is_file():
+                targets.add(parts[1])
+        targets.discard(own)
+    return graph
+
+
+def test_layers_import_only_downwards():
+    graph = _package_graph()
+    order = {name: index for index, name in enumerate(LAYERS)}
+    problems = []
+    for own, targets in sorted(graph.items()):
+        if own in GLUE or own in DEVTOOLS or own == '__init__':
+            continue
+        if own == RUNTIME:
+            assert targets <= {'errors'}, f'runtime imports {targets}'
+            continue
+        assert own in order, f'{own}: a subpackage of no layer (add it to LAYERS)'
+        for target in sorted(targets):
+            if target in GLUE or target in DEVTOOLS or \
+                    order.get(target, len(LAYERS)) >= order[own]:
+                problems.append(f'{own} imports {target}')
+    assert problems == []
+
+
+def test_no_import_cycle_between_subpackages():
+    graph = _package_graph()
+    state: dict[str, int] = {}
+
+    def visit(node: str, path: list[str]) -> None:
+        state[node] = 1
+        for child in sorted(graph.get(node, ())):
+            assert state.get(child) != 1, \
+                'import cycle: ' + ' -> '.join(path + [node, child])
+            if not state.get(child):
+                visit(child, path + [node])
+        state[node] = 2
+
+    for node in sorted(graph):
+        if not state.get(node):
+            visit(node, [])
+
+
+def test_pipeline_is_not_importing_glue_or_devtools():
+    graph = _package_graph()
+    for own in LAYERS:
+        assert not graph.get(own, set()) & set(GLUE + DEVTOOLS + (RUNTIME,)), own
+
+
+def test_only_the_glue_imports_colcon():
+    colcon = ('colcon_core', 'colcon_ros', 'colcon_cmake')
+    importers = sorted(
+        str(path.relative_to(REPO)) for path in _sources(PACKAGE)
+        if RUNTIME_PACKAGE not in path.parents and
+        any(m.split('.')[0] in colcon for m in _imports(path)))
+    assert importers, 'the glue imports colcon_core'
+    assert [p for p in importers
+            if Path(p).parts[1] not in GLUE] == []
+
+
+@pytest.mark.parametrize('folder', ['bench', 'tools'])
+def test_bench_and_tools_do_not_use_tests(folder: str):
+    for path in _sources(REPO / folder):
+        text = path.read_text(encoding='utf-8')
+        modules = _imports(path)
+        assert not {m.split('.')[0] for m in modules} & {'harness', 'conftest', 'tests'}, \
+            f'{path.relative_to(REPO)} imports from tests/'
+        assert "'tests'" not in text and '"tests"' not in text, \
+            f'{path.relative_to(REPO)} puts tests/ on its path'
+
+
+def test_modules_are_small():
+    big = {str(p.relative_to(REPO)): n for p in _sources(PACKAGE)
+           if (n := len(p.read_text(encoding='utf-8').splitlines())) > MAX_MODULE_LINES}
+    assert big == {}
+
+
+def test_templates_are_small():
+    big = {}
+    for path in sorted((REPO / 'templates').rglob('*.jinja')):
+        name = str(path.relative_to(REPO))
+        lines = len(path.read_text(encoding='utf-8').splitlines())
+        if lines > RUNTIME_PENDING.get(name, MAX_TEMPLATE_LINES):
+            big[name] = lines
+    assert big == {}
+    # an entry for a template that shrank is stale: remove it
+    for name, limit in RUNTIME_PENDING.items():
+        path = REPO / name
+        assert not path.exists() or \
+            len(path.read_text(encoding='utf-8').splitlines()) > MAX_TEMPLATE_LINES, name
