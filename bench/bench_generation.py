@@ -216,7 +216,7 @@ def goals(results: list[Samples]) -> list[str]:
         f'  no-change generation: {again.total:.2f} s wall, {again.cpu:.2f} s CPU '
         f'(goal < {GOAL_AGAIN_S} s: wall {met(again.total < GOAL_AGAIN_S)}, '
         f'CPU {met(again.cpu < GOAL_AGAIN_S)})',
-        f'  time per component at N={n} / at N={smallest.components}: {flat:.2f}x '
+        f'  time per component at N={n} / at N={smallest.components}: {flat:.3f}x '
         f'(goal: flat, < {GOAL_FLAT:.2f}x: {met(flat < GOAL_FLAT)})',
         f'  peak memory (max RSS of this process, every size): {peak:.0f} MB '
         f'(goal < {GOAL_PEAK_MB} MB: {met(peak < GOAL_PEAK_MB)})',

