@@ -7,7 +7,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterable
+import sys
+from typing import Iterable, TextIO
 
 
 @dataclass(frozen=True, order=True)
@@ -55,3 +56,27 @@ class RobmosysError(Exception):
     def in_file(cls, path: Path | str, message: str) -> 'RobmosysError':
         """Create an error about a whole file."""
         return cls.at(Location(str(path)), message)
+
+
+#: What :func:`print_diagnostics` printed in this process.
+_printed: set[Diagnostic] = set()
+
+
+def print_diagnostics(diagnostics: Iterable[Diagnostic],
+                      stream: TextIO | None = None) -> int:
+    """Print each diagnostic not printed yet as one bare compiler-style line.
+
+    One colcon invocation meets a model error in several places (discovery,
+    the build task of each package of the file, the verb); editors and CI
+    problem matchers (GCC format) want it once, without a logger prefix.
+
+    :returns: how many lines were printed
+    """
+    stream = sys.stderr if stream is None else stream
+    fresh = sorted(set(diagnostics) - _printed)
+    for diagnostic in fresh:
+        print(diagnostic, file=stream)
+    _printed.update(fresh)
+    if fresh:
+        stream.flush()
+    return len(fresh)

@@ -12,6 +12,7 @@ from colcon_core.plugin_system import satisfies_version
 from colcon_robmosys.check import load_workspace
 from colcon_robmosys.check.cache import CACHE_DIR
 from colcon_robmosys.check.cache import ModelCache
+from colcon_robmosys.errors import print_diagnostics
 from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
 from colcon_robmosys.model.files import model_dependencies
 from colcon_robmosys.model.types import Component
@@ -27,6 +28,31 @@ logger = colcon_logger.getChild(__name__)
 
 #: Where a package descriptor keeps the loaded workspace.
 METADATA_KEY = 'robmosys'
+
+
+class CheckedModels:
+    """The checked workspace, shared by the descriptors of its packages.
+
+    ``colcon info`` prints every metadata value: this one reads as a line,
+    not as the whole workspace.
+    """
+
+    __slots__ = ('result', )
+
+    def __init__(self, result):  # noqa: D107
+        self.result = result
+
+    def __str__(self):
+        errors = len(self.result.errors)
+        return (f'{len(self.result.workspace.models)} checked models, '
+                f'{errors} error(s)')
+
+    __repr__ = __str__
+
+
+def checked_result(descriptor):
+    """Return the check stage's result a descriptor of ours carries."""
+    return descriptor.metadata[METADATA_KEY].result
 
 
 class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
@@ -60,14 +86,12 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
         if not model_files:
             return set()
         result = load_workspace(model_files, cache=model_cache(args))
-        # errors now, whatever the verb, since they stop what it does;
-        # warnings are told by the build of their package and by
-        # robmosys-generate, and only for the packages selected
-        for diagnostic in result.diagnostics:
-            if diagnostic.severity == 'error':
-                logger.error(str(diagnostic))
-            else:
-                logger.debug(str(diagnostic))
+        shared = CheckedModels(result)
+        # errors now, whatever the verb, since they stop what it does: bare
+        # compiler-style lines, once; warnings are told by the build of their
+        # package and by robmosys-generate, and only for the packages selected
+        print_diagnostics(
+            d for d in result.diagnostics if d.severity == 'error')
         descriptors = set()
         for model in result.workspace.models:
             kind = 'interfaces' if isinstance(model, ServiceDefinition) else \
@@ -81,14 +105,14 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
                 dependencies += CPP_CLIENT_PACKAGES
             descriptors.add(_descriptor(
                 model.info.model_file, model.package, kind,
-                dependencies, result))
+                dependencies, shared))
         for model_file, declared in sorted(result.broken_files.items()):
             # the build of these packages reports the errors and fails;
             # a file too broken to name any is named after its folder
             for name, kind in declared or [
                     (Path(model_file).parent.name, 'invalid')]:
                 descriptors.add(
-                    _descriptor(model_file, name, kind, (), result))
+                    _descriptor(model_file, name, kind, (), shared))
         if not runtime_folders and _runtime_needed(args):
             descriptors.add(_runtime_descriptor())
         return descriptors
@@ -135,13 +159,13 @@ def _runtime_descriptor():
     return desc
 
 
-def _descriptor(model_file, name, kind, dependencies, result):
+def _descriptor(model_file, name, kind, dependencies, shared):
     desc = PackageDescriptor(Path(model_file).parent)
     desc.type = f'robmosys.{kind}'
     desc.name = name
     for category in ('build', 'run'):
         desc.dependencies[category] = {
             DependencyDescriptor(d) for d in dependencies}
-    desc.metadata[METADATA_KEY] = result
+    desc.metadata[METADATA_KEY] = shared
     desc.metadata['robmosys_model_file'] = str(model_file)
     return desc

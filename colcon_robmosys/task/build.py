@@ -12,12 +12,13 @@ from colcon_core.task import TaskExtensionPoint
 from colcon_ros.task.ament_cmake.build import AmentCmakeBuildTask
 
 from colcon_robmosys.check.cache import CACHE_DIR
+from colcon_robmosys.errors import print_diagnostics
 from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
 from colcon_robmosys.generators import StampStore
 from colcon_robmosys.generators import unchanged_package
-from colcon_robmosys.package_discovery.robmosys import METADATA_KEY
+from colcon_robmosys.package_discovery.robmosys import checked_result
 
 logger = colcon_logger.getChild(__name__)
 
@@ -34,14 +35,16 @@ class RobmosysBuildTask(TaskExtensionPoint):
 
     async def build(self):  # noqa: D102
         pkg, args = self.context.pkg, self.context.args
-        result = pkg.metadata[METADATA_KEY]
+        result = checked_result(pkg)
         model_file = pkg.metadata['robmosys_model_file']
         errors = result.errors_of(model_file)
         if errors or model_file in result.broken_files:
-            for diagnostic in errors:
-                logger.error(str(diagnostic))
-            logger.error(
-                f"cannot generate '{pkg.name}': its model file has errors")
+            # discovery has printed them; this package's failure in colcon's
+            # summary says what it holds back
+            print_diagnostics(errors)
+            self.context.put_event_into_queue(StderrLine(
+                f"cannot generate '{pkg.name}': {model_file} has errors\n"
+                .encode()))
             return 1
         # warnings go with the package's own output, like a compiler's: in
         # its build log, on the console, in colcon's summary of packages
@@ -60,8 +63,7 @@ class RobmosysBuildTask(TaskExtensionPoint):
                 generate_package(plan, source_dir, stamps=stamps,
                                  fingerprint=fingerprint)
         except RobmosysError as error:
-            for diagnostic in error.diagnostics:
-                logger.error(str(diagnostic))
+            print_diagnostics(error.diagnostics)
             return 1
         logger.info(
             f"Generated '{pkg.name}' in '{source_dir}': "

@@ -11,11 +11,12 @@ from colcon_core.package_selection import get_packages
 from colcon_core.plugin_system import satisfies_version
 from colcon_core.verb import VerbExtensionPoint
 
+from colcon_robmosys.errors import print_diagnostics
 from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.generators import create_missing_user_files
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
-from colcon_robmosys.package_discovery.robmosys import METADATA_KEY
+from colcon_robmosys.package_discovery.robmosys import checked_result
 
 
 class RobmosysGenerateVerb(VerbExtensionPoint):
@@ -48,16 +49,17 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
         if not selected:
             print('No RobMoSys model selected', file=sys.stderr)
             return 0
-        result = selected[0].metadata[METADATA_KEY]
-        for descriptor in sorted(selected, key=lambda d: d.name):
-            for diagnostic in result.warnings_of(descriptor.name):
-                print(diagnostic, file=sys.stderr)
+        result = checked_result(selected[0])
+        print_diagnostics(
+            w for d in selected for w in result.warnings_of(d.name))
         model_files = {d.metadata['robmosys_model_file'] for d in selected}
         errors = [e for e in result.errors
                   if e.location.path in model_files]
         broken = model_files & result.broken_files.keys()
         if errors or broken:
-            # the discovery has logged every diagnostic already
+            # discovery has printed every error already; a second
+            # call prints nothing, unless the errors came some other way
+            print_diagnostics(errors)
             print(f'{len(errors)} error(s) in the selected models',
                   file=sys.stderr)
             return 1
@@ -70,7 +72,11 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
             # as colcon marks build/ and install/: the generated packages
             # must not be found as packages of the workspace next time
             args.output_dir.mkdir(parents=True, exist_ok=True)
-            (args.output_dir / 'COLCON_IGNORE').touch()
+            marker = args.output_dir / 'COLCON_IGNORE'
+            if not marker.exists():
+                # created once: touching it would change its mtime on
+                # every run, and a run with no change changes nothing
+                marker.touch()
         for descriptor in selected:
             try:
                 plan = plan_package(result.workspace, descriptor.name)
@@ -86,8 +92,7 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
                           f'{len(report.unchanged)} unchanged, '
                           f'{len(report.removed)} removed')
             except RobmosysError as error:
-                for diagnostic in error.diagnostics:
-                    print(diagnostic, file=sys.stderr)
+                print_diagnostics(error.diagnostics)
                 status = 1
         return status
 
