@@ -68,16 +68,56 @@ run_activity_callback set_lifecycle
 """.split())
 
 
+def identifier_problems(name: str) -> list[str]:
+    """Return every reason why a name cannot be a C++ and Python identifier.
+
+    A user who fixes one problem should not meet the next only on the next
+    run: a name that is non-ASCII and starts with a digit hears both.
+    """
+    problems = []
+    non_ascii = sorted({c for c in name if not c.isascii()})
+    if non_ascii:
+        problems.append(
+            f"holds {_characters(non_ascii)}, which is not ASCII (ROS 2 names "
+            'are ASCII)')
+    others = sorted({c for c in name if c.isascii() and
+                     not (c.isalnum() or c == '_')})
+    if others:
+        problems.append(f'holds {_characters(others)}, which a name cannot '
+                        'hold (letters, digits and single underscores)')
+    if not name:
+        problems.append('is empty')
+    elif not (name[0].isascii() and name[0].isalpha()):
+        problems.append('must start with a letter')
+    if '__' in name:
+        problems.append('holds a double underscore, which C++ reserves')
+    cpp, python = name in CPP_KEYWORDS, name in PYTHON_KEYWORDS
+    if cpp and python:
+        problems.append('is a C++ keyword and a Python keyword')
+    elif cpp:
+        problems.append('is a C++ keyword')
+    elif python:
+        problems.append('is a Python keyword')
+    return problems
+
+
 def identifier_problem(name: str) -> str | None:
     """Return why a name cannot be a C++ and Python identifier, or None."""
-    if not IDENTIFIER_RE.match(name):
-        return ('must start with a letter and hold only letters, digits and '
-                'single underscores')
-    if name in CPP_KEYWORDS:
-        return 'is a C++ keyword'
-    if name in PYTHON_KEYWORDS:
-        return 'is a Python keyword'
-    return None
+    problems = identifier_problems(name)
+    return join_problems(problems) if problems else None
+
+
+def join_problems(problems: list[str]) -> str:
+    """Join problems into one clause: ``a, b and c``."""
+    if len(problems) < 2:
+        return ''.join(problems)
+    return f"{', '.join(problems[:-1])} and {problems[-1]}"
+
+
+def _characters(characters: list[str]) -> str:
+    shown = ', '.join(repr(c) if c.isprintable() else ascii(c)
+                      for c in characters)
+    return f"the character{'s' if len(characters) > 1 else ''} {shown}"
 
 
 def package_problem(name: str) -> str | None:

@@ -16,7 +16,11 @@ from jsonschema.exceptions import ValidationError
 from jsonschema.validators import extend
 
 from colcon_robmosys.errors import Diagnostic
+from colcon_robmosys.model import names
 from colcon_robmosys.model.loader import LoadedFile, NodePath
+
+#: The schema's pattern of names that become C++ and Python identifiers.
+IDENTIFIER_PATTERN = '^[A-Za-z][A-Za-z0-9_]*$'
 
 SCHEMA_FILE = 'robmosys.schema.json'
 
@@ -153,8 +157,13 @@ def _message(error: ValidationError) -> tuple[str, bool]:
                 f'{_describe(error.instance)}'), False
     if validator == 'pattern' and 'propertyNames' in \
             error.absolute_schema_path:
-        return (f'{_describe(error.instance)} is not a valid name: '
-                f'{_pattern_hint(error.schema)}'), True
+        problems = names.identifier_problems(str(error.instance)) \
+            if error.validator_value == IDENTIFIER_PATTERN else []
+        # every problem of the name at once, where we know them
+        reason = f'it {names.join_problems(problems)}' if problems else \
+            _pattern_hint(error.schema)
+        return f'{_describe(error.instance)} is not a valid name: {reason}', \
+            True
     if validator == 'pattern':
         return (f'{_subject(path)}: {_describe(error.instance)} is not valid: '
                 f'{_pattern_hint(error.schema)}'), False
