@@ -227,11 +227,13 @@ class WorkspaceChecker(TypeRules, WiringRules, CycleRules):
                     self.definitions[model.package] = model
                 elif isinstance(model, Component):
                     self.components[model.package] = model
+        # components before systems: a system's rules skip what follows
+        # from a component's error
+        for model in self.definitions.values():
+            self._check_definition(model)
+        for model in self.components.values():
+            self._check_component(model)
         for model in self.models.values():
-            if isinstance(model, ServiceDefinition):
-                self._check_definition(model)
-            elif isinstance(model, Component):
-                self._check_component(model)
-            else:
+            if isinstance(model, System):
                 self._check_system(model)
         self._check_cycles()

@@ -28,6 +28,8 @@ class CheckContext:
         self.models: dict[str, Model] = {}
         self.definitions: dict[str, ServiceDefinition] = {}
         self.components: dict[str, Component] = {}
+        #: ports whose type is already reported: what follows from it is not
+        self.mistyped: set[Location] = set()
 
     def error(self, location: Location, message: str) -> None:
         """Record an error."""

@@ -82,12 +82,15 @@ class TypeRules(CheckContext):
             problem = self._interface_problem(port.type) or \
                 self._event_problem(port)
             if problem:
-                self.error(port.location, f"port '{port.name}': {problem}")
-        for package in component.info.depends:
+                self.error(port.type_location or port.location,
+                           f"port '{port.name}': {problem}")
+                self.mistyped.add(port.location)
+        info = component.info
+        for package, location in zip(info.depends, info.depends_locations):
             if package not in self.models and \
                     package not in self.broken_packages and \
                     not self.index.has_package(package):
-                self.error(component.info.location,
+                self.error(location,
                            f"component '{component.name}' depends on "
                            f"unknown package '{package}'")
 

@@ -108,6 +108,9 @@ class WiringRules(CheckContext):
                        'provided port to a required one')
             return False
         if a.type != b.type:
+            if {a.location, b.location} & self.mistyped:
+                # one mistake, one message: the type is reported already
+                return False
             self.error(location, f"type mismatch: '{a.name}' exchanges "
                        f"{a.type}, '{b.name}' exchanges {b.type}")
             return False

@@ -84,6 +84,8 @@ class PackageInfo:
     #: the model file this package comes from
     model_file: str
     location: Location
+    #: where the model names each of ``depends``
+    depends_locations: tuple[Location, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -75,6 +75,9 @@ class BuilderBase:
             depends=tuple(raw.get('depends', ())),
             model_file=str(self.loaded.path),
             location=self.at(path + ('package',)),
+            depends_locations=tuple(
+                self.at(path + ('depends', i))
+                for i in range(len(raw.get('depends', ())))),
         )
 
 

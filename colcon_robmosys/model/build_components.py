@@ -111,7 +111,8 @@ class ComponentBuilder(BuilderBase):
                        "meaning with history 'keep_all'")
         return Port(name, pattern, role, type_, qos,
                     raw.get('description', ''), self.at(path, key=True),
-                    self.at(path + ('qos',)) if qos_raw else None)
+                    self.at(path + ('qos',)) if qos_raw else None,
+                    self.at(path + ('type',)))
 
     def _function(self, path: NodePath, name: str, raw: RawData | None,
                   language: Language) -> Function:

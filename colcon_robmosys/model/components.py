@@ -41,6 +41,8 @@ class Port:
     location: Location
     #: where the model sets its QoS, if it does
     qos_location: Location | None = None
+    #: where the model names its type
+    type_location: Location | None = None
 
 
 @dataclass(frozen=True)

@@ -78,7 +78,7 @@ def identifier_problems(name: str) -> list[str]:
     non_ascii = sorted({c for c in name if not c.isascii()})
     if non_ascii:
         problems.append(
-            f"holds {_characters(non_ascii)}, which is not ASCII (ROS 2 names "
+            f'holds {_characters(non_ascii)}, which is not ASCII (ROS 2 names '
             'are ASCII)')
     others = sorted({c for c in name if c.isascii() and
                      not (c.isalnum() or c == '_')})
