@@ -49,7 +49,7 @@ import yaml
 from benchlib import print_end, print_machine, ratio, REPO, table
 from colcon_robmosys.devtools import ros_env
 from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
-from colcon_robmosys.task.build import missing_prefix_packages
+from colcon_robmosys.package_selection.robmosys import missing_prefix_packages
 
 HANDWRITTEN = REPO / 'bench' / 'handwritten_pubsub.py'
 #: the ament_cmake package of the hand-written C++ pair

@@ -20,7 +20,7 @@ PACKAGE = REPO / 'colcon_robmosys'
 #: errors.py is the one module every layer shares.
 LAYERS = ('errors', 'model', 'mapping', 'check', 'generators')
 #: The colcon glue, on top; the only importers of colcon_core.
-GLUE = ('package_identification', 'package_discovery', 'task', 'verb')
+GLUE = ('package_identification', 'package_discovery', 'package_selection', 'task', 'verb')
 #: Tools for developers (tests, benchmarks, the demo): above everything,
 #: imported by nothing of the pipeline.
 DEVTOOLS = ('devtools',)

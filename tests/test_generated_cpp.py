@@ -285,7 +285,7 @@ def test_package_xml_is_valid_and_complete(generated_cpp):
 
 def test_rclcpp_is_looked_up_where_find_package_looks(tmp_path):
     """The ament index of a prefix, or a CMake config file, counts as installed."""
-    from colcon_robmosys.task.build import missing_prefix_packages
+    from colcon_robmosys.package_selection.robmosys import missing_prefix_packages
     ament, cmake, workspace = tmp_path / 'ament', tmp_path / 'cmake', tmp_path / 'ws'
     (ament / 'share' / 'ament_index' / 'resource_index' / 'packages').mkdir(parents=True)
     (ament / 'share' / 'ament_index' / 'resource_index' / 'packages' / 'rclcpp').touch()

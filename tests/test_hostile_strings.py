@@ -28,6 +28,7 @@ from colcon_robmosys.generators import (
     create_missing_user_files, generate_package, MANIFEST, read_manifest)
 from colcon_robmosys.generators import plan_package
 from colcon_robmosys.generators.filters import cmake_str, cpp_str, yaml_value
+from colcon_robmosys.model.fieldtypes import interface_comment_problem
 
 PLAIN = 'Plain words'
 
@@ -48,7 +49,11 @@ HOSTILE = [
 
 
 def msg_safe(text: str) -> bool:
-    """Say whether a .msg file can carry text as a string value."""
+    """Say whether a .msg file carries text as a string value rosidl_adapter reads as is.
+
+    A backslash is carried too, spelled for the IDL step after the adapter's
+    parse (test_rosidl_text reads it back from the built package).
+    """
     return text.isprintable() and not set(text) & set('#=\\')
 
 
@@ -57,16 +62,19 @@ def _model_files(text: str) -> dict[str, dict]:
     # the .msg format has no escapes: the model refuses values it cannot
     # carry (test_model_invalid), so those get a plain value here
     value = text if msg_safe(text) else PLAIN
+    # rosidl copies comments into C comments unescaped: the model refuses
+    # what would end one (test_rosidl_text)
+    comment = PLAIN if interface_comment_problem(text) else text
     who = {'license': 'Apache-2.0', 'maintainers': [{'name': text, 'email': 'a@example.com'}]}
     return {
         'hostile_msgs': {'robmosys': 1, 'service_definitions': [{
             'package': 'hostile_msgs', 'description': text, **who,
             'communication_objects': {'Note': {
-                'description': text,
+                'description': comment,
                 'constants': {'GREETING': {'type': 'string', 'value': value,
-                                           'comment': text}},
-                'fields': {'text': {'type': 'string', 'default': value, 'comment': text},
-                           'count': {'type': 'int32', 'comment': text}},
+                                           'comment': comment}},
+                'fields': {'text': {'type': 'string', 'default': value, 'comment': comment},
+                           'count': {'type': 'int32', 'comment': comment}},
             }},
         }]},
         'hostile': {'robmosys': 1, 'components': [{

@@ -198,6 +198,26 @@ class LifecycleDriver:
             id=getattr(Transition, f'TRANSITION_{label.upper()}'))
         return self._call(ChangeState, f'{fqn}/change_state', request, timeout).success
 
+    def request_transition(self, fqn: str, label: str, timeout: float = 20.0) -> Any:
+        """Ask a node to change its lifecycle state, without waiting for the answer.
+
+        :returns: the future of the ``change_state`` call; :meth:`spin` completes it
+        """
+        from lifecycle_msgs.msg import Transition
+        from lifecycle_msgs.srv import ChangeState
+        key = (ChangeState, f'{fqn}/change_state')
+        if key not in self._clients:
+            self._clients[key] = self.node.create_client(*key)
+        client = self._clients[key]
+        if not client.wait_for_service(timeout_sec=timeout):
+            raise TimeoutError(f'service {key[1]} did not appear within {timeout} s')
+        request = ChangeState.Request()
+        request.transition = Transition(
+            id=getattr(Transition, f'TRANSITION_{label.upper()}'))
+        future = client.call_async(request)
+        self.executor.spin_once(timeout_sec=0.01)
+        return future
+
     def watch_transitions(self, fqns: list[str]) -> list[tuple[str, str]]:
         """Return a list that collects, in order, every state the nodes reach from now on.
 

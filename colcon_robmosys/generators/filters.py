@@ -46,6 +46,22 @@ def hash_comment(text: Any) -> str:
     return '\n'.join(('# ' + line).rstrip() for line in lines)
 
 
+def msg_comment(text: Any) -> str:
+    """Turn text into the ``#`` lines of a .msg, .srv or .action file.
+
+    rosidl reads each comment line back as the same text in the IDL it makes,
+    the C headers and every generator: rosidl_adapter passes the line
+    through Python's ``unicode_escape`` codec and writes it into an IDL
+    string literal, whose parser unescapes backslashes twice, so each
+    backslash is written as eight. Non-ASCII text needs nothing: the adapter
+    writes its IDL as Latin-1 and the parser reads it as UTF-8, which undoes
+    the codec's mangling. What no spelling carries (``*/`` and a line ending
+    in a backslash, in the C comments rosidl_generator_c writes) the check
+    refuses (model/fieldtypes.py).
+    """
+    return hash_comment(str(text).replace('\\', '\\' * 8))
+
+
 def py_str(text: Any) -> str:
     """Write a Python string literal (single quotes where possible)."""
     return repr(str(text))
@@ -180,7 +196,7 @@ FILTERS: dict[str, Callable[..., str]] = {
     'xml': xml,
     'xml_attr': xml_attr,
     'xml_comment': xml_comment,
-    'msg_comment': hash_comment,
+    'msg_comment': msg_comment,
     'hash_comment': hash_comment,
     'py_str': py_str,
     'py_literal': py_literal,

@@ -27,12 +27,19 @@ from colcon_robmosys.mapping.component import (
 from colcon_robmosys.mapping.cpp_context import (
     CppActivity, CppComponent, CppFunction, CppIncludes, CppParameter, CppPort, CppRange)
 from colcon_robmosys.mapping.literals import cpp_str, split_literal
-from colcon_robmosys.mapping.portkinds import Delivery, Entity, Returns
+from colcon_robmosys.mapping.portkinds import Delivery, Entity, port_kind, Returns
 from colcon_robmosys.mapping.qos import resolve_qos
 from colcon_robmosys.model.types import Component, InterfaceRef, Parameter, QoS
 
 #: The ROS 2 packages a C++ component needs in the prefix to build at all.
 CPP_CLIENT_PACKAGES = ('rclcpp', 'rclcpp_lifecycle', 'rclcpp_components')
+
+
+def cpp_client_packages(component: Component) -> tuple[str, ...]:
+    """Return the rclcpp packages a C++ component is built with."""
+    uses_actions = any(port_kind(p).uses_actions for p in component.ports)
+    return CPP_CLIENT_PACKAGES + (('rclcpp_action',) if uses_actions else ())
+
 
 #: entity -> the type of the member that holds it
 MEMBER_TYPES = {
@@ -277,8 +284,7 @@ def spell_cpp(component: Component, plan: ComponentPlan) -> CppComponent:
     ports = tuple(_port(p) for p in plan.ports)
     functions = tuple(_function(cls, f) for f in plan.functions)
     activities = tuple(_activity(a) for a in plan.activities)
-    client_packages = CPP_CLIENT_PACKAGES + (
-        ('rclcpp_action',) if plan.uses_actions else ())
+    client_packages = cpp_client_packages(component)
     # the parameter descriptors and the lifecycle states are used directly
     interfaces = unique(('rcl_interfaces', 'lifecycle_msgs') + plan.depends)
     build_depends = client_packages + (RUNTIME_PACKAGE,) + interfaces

@@ -66,9 +66,11 @@ def _literal(value: Any, primitive: str | None) -> str:
     if isinstance(value, bool):
         return 'true' if value else 'false'
     if isinstance(value, str):
-        # rosidl strips the outer quotes and unescapes only inner ones; the
-        # model refuses what else it could not read back (fieldtypes.py)
-        return '"' + value.replace('"', '\\"') + '"'
+        # rosidl_adapter unescapes inner quotes, then passes the value through
+        # Python's unicode_escape codec into an IDL string literal, whose
+        # parser unescapes backslashes twice: eight backslashes read back as
+        # one. The model refuses what no spelling carries (fieldtypes.py).
+        return '"' + value.replace('\\', '\\' * 8).replace('"', '\\"') + '"'
     return repr(value)
 
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 from colcon_robmosys.model import names
 from colcon_robmosys.model.build_base import BuilderBase
 from colcon_robmosys.model.fieldtypes import (
-    parse_field_type, TypeNameError, value_problem)
+    interface_comment_problem, parse_field_type, TypeNameError, value_problem)
 from colcon_robmosys.model.loader import NodePath, RawData
 from colcon_robmosys.model.types import (
     Action, CommunicationObject, Constant, Event, Field, FieldType, Query,
@@ -47,6 +47,8 @@ class DefinitionBuilder(BuilderBase):
         for name, body in raw.get('queries', {}).items():
             named('queries', name)
             qpath = path + ('queries', name)
+            self._comment(qpath + ('description',),
+                          body.get('description', ''), f"the description of query '{name}'")
             queries.append(Query(
                 name, body.get('description', ''),
                 self._structure(qpath + ('request',),
@@ -61,6 +63,8 @@ class DefinitionBuilder(BuilderBase):
             goal, result, feedback = (
                 self._structure(apath + (part,), body.get(part, {}), package)
                 for part in ('goal', 'result', 'feedback'))
+            self._comment(apath + ('description',),
+                          body.get('description', ''), f"the description of action '{name}'")
             actions.append(Action(
                 name, body.get('description', ''), goal, result, feedback,
                 self.at(apath, key=True)))
@@ -74,6 +78,8 @@ class DefinitionBuilder(BuilderBase):
                            f"event '{name}': the activation field 'single' "
                            'is reserved: it carries the mode of an '
                            'activation (single or continuous)', key=True)
+            self._comment(epath + ('description',),
+                          body.get('description', ''), f"the description of event '{name}'")
             events.append(Event(
                 name, body.get('description', ''),
                 self._structure(epath + ('activation',),
@@ -121,6 +127,8 @@ class DefinitionBuilder(BuilderBase):
                 if problem:
                     self.error(fpath + ('default',),
                                f"field '{name}': {problem}")
+            self._comment(fpath + ('comment',), spec.get('comment', ''),
+                          f"field '{name}'")
             if field_type is not None:
                 fields.append(Field(name, field_type, default,
                                     spec.get('comment', ''),
@@ -143,10 +151,20 @@ class DefinitionBuilder(BuilderBase):
             problem = value_problem(field_type, spec['value'])
             if problem:
                 self.error(cpath + ('value',), f"constant '{name}': {problem}")
+            self._comment(cpath + ('comment',), spec.get('comment', ''),
+                          f"constant '{name}'")
             constants.append(Constant(name, field_type, spec['value'],
                                       spec.get('comment', ''),
                                       self.at(cpath, key=True)))
+        self._comment(path + ('description',), raw.get('description', ''),
+                      'the description')
         return Structure(raw.get('description', ''), tuple(fields),
                          tuple(constants))
+
+    def _comment(self, path: NodePath, text: str, what: str) -> None:
+        """Refuse text that cannot be a comment of an interface file."""
+        problem = interface_comment_problem(text) if text else None
+        if problem:
+            self.error(path, f'{what} {problem}')
 
     # components ---------------------------------------------------------

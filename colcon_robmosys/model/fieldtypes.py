@@ -22,8 +22,9 @@ _INTERFACE_RE = re.compile(
     r'(?P<name>[A-Z][A-Za-z0-9]*)\Z')
 
 #: rosidl reads a .msg line up to its first '#' and splits it at its first
-#: '='; it unescapes only quotes, so a backslash would change meaning.
-_MSG_UNSAFE = frozenset('#=\\')
+#: '=': no spelling carries them in a value (backslashes and quotes are
+#: escaped, see generators/filters.py msg_default).
+_MSG_UNSAFE = frozenset('#=')
 
 _INT_RANGES = {
     'int8': (-2 ** 7, 2 ** 7 - 1), 'uint8': (0, 2 ** 8 - 1),
@@ -119,11 +120,35 @@ def value_problem(field_type: FieldType, value: Any) -> str | None:
             return (f'the default must have at most {field_type.array_size} '
                     f'items, not {len(value)}')
         for item in value:
-            problem = _scalar_problem(field_type, item)
+            problem = _scalar_problem(field_type, item) or \
+                _string_item_problem(field_type, item)
             if problem:
                 return problem
         return None
     return _scalar_problem(field_type, value)
+
+
+#: rosidl_adapter writes the default of a string array into the IDL as the
+#: repr() of a tuple, with no unicode_escape pass, and its generators read it
+#: back with their own parsers: only plain text survives that.
+_ARRAY_ITEM_UNSAFE = frozenset('"\',[]\\#=')
+
+
+def _string_item_problem(field_type: FieldType, item: Any) -> str | None:
+    if field_type.primitive not in ('string', 'wstring') or \
+            not isinstance(item, str):
+        return None
+    unsafe = next((c for c in item if c in _ARRAY_ITEM_UNSAFE or
+                   not c.isascii()), None)
+    if unsafe is not None:
+        return (f'the string {item!r} holds {unsafe!r}, which rosidl cannot '
+                'carry in the default of a string array (quotes, brackets, '
+                "commas, backslashes, '#', '=' and non-ASCII characters are "
+                'lost or break its build)')
+    if item != item.strip():
+        return (f'the string {item!r} starts or ends with white space, which '
+                'rosidl strips from the items of a string array default')
+    return None
 
 
 def _scalar_problem(field_type: FieldType, value: Any) -> str | None:
@@ -144,7 +169,7 @@ def _scalar_problem(field_type: FieldType, value: Any) -> str | None:
         if unsafe is not None:
             return (f'the string {value!r} holds {unsafe!r}, which the .msg '
                     'format cannot carry in a value (it has no escapes for '
-                    "'#', '=', '\\' and control characters)")
+                    "'#', '=' and control characters)")
         return None
     if primitive in ('float32', 'float64'):
         if isinstance(value, bool) or not isinstance(value, (int, float)):
@@ -157,4 +182,24 @@ def _scalar_problem(field_type: FieldType, value: Any) -> str | None:
     low, high = _INT_RANGES[primitive]
     if not low <= value <= high:
         return f'{value} is out of the range of {primitive} ({low}..{high})'
+    return None
+
+
+def interface_comment_problem(text: str) -> str | None:
+    """Return why text cannot be a comment of an interface file, or None.
+
+    rosidl_generator_c copies the comments of a .msg into the C header of the
+    message, inside ``/** ... */`` and after ``///``, with no escaping: a
+    ``*/`` would end the comment and make the rest C code, and a line ending
+    in a backslash (or the trigraph ``??/``) would continue a ``///`` comment
+    onto the declaration after it.
+    """
+    if '*/' in text:
+        return ("holds '*/', which would end the C comment rosidl writes it "
+                'into (C has no escape for it)')
+    for line in text.splitlines():
+        if line.rstrip().endswith(('\\', '??/')):
+            return ('has a line that ends with a backslash, which would '
+                    'continue the C comment rosidl writes it into onto the '
+                    'next line of code')
     return None

@@ -13,7 +13,7 @@ from colcon_robmosys.check import load_workspace
 from colcon_robmosys.check.cache import CACHE_DIR
 from colcon_robmosys.check.cache import ModelCache
 from colcon_robmosys.errors import print_diagnostics
-from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
+from colcon_robmosys.mapping.cpp import cpp_client_packages
 from colcon_robmosys.model.files import model_dependencies
 from colcon_robmosys.model.types import Component
 from colcon_robmosys.model.types import Language
@@ -101,8 +101,9 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
                 dependencies += (RUNTIME_PACKAGE, )
             if isinstance(model, Component) and \
                     model.language is Language.CPP:
-                # built before, if the workspace builds rclcpp itself
-                dependencies += CPP_CLIENT_PACKAGES
+                # built before, if the workspace builds rclcpp itself; the
+                # package selection skips the component where none has it
+                dependencies += cpp_client_packages(model)
             descriptors.add(_descriptor(
                 model.info.model_file, model.package, kind,
                 dependencies, shared))

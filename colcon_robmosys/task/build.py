@@ -1,10 +1,8 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-import os
 from pathlib import Path
 
-from colcon_core.environment import create_environment_scripts
 from colcon_core.event.output import StderrLine
 from colcon_core.logging import colcon_logger
 from colcon_core.plugin_system import satisfies_version
@@ -71,52 +69,8 @@ class RobmosysBuildTask(TaskExtensionPoint):
             f'{len(report.unchanged)} unchanged, '
             f'{len(report.removed)} removed')
 
-        missing = missing_prefix_packages(
-            plan.prefix_requirements, self.context.dependencies.values())
-        if missing:
-            # no failure: a workspace with C++ components still builds the
-            # rest on a machine without rclcpp, and says what it left out
-            message = (
-                f"Skipped building '{pkg.name}': it needs "
-                f"{', '.join(missing)}, which no prefix on AMENT_PREFIX_PATH "
-                'or CMAKE_PREFIX_PATH provides (source a ROS 2 install that '
-                f"has them). Its sources are generated in '{source_dir}'.")
-            logger.warning(message)
-            self.context.put_event_into_queue(
-                StderrLine(message.encode() + b'\n'))
-            # an install entry without content: packages that only run it
-            # (systems) still build; one that find_package()s it fails there
-            create_environment_scripts(pkg, args, default_hooks=[])
-            return 0
-
         # the generated tree is an ordinary ament_cmake package
         args.path = str(source_dir)
         extension = AmentCmakeBuildTask()
         extension.set_context(context=self.context)
         return await extension.build()
-
-
-def missing_prefix_packages(names, dependency_prefixes, environ=None):
-    """Return the packages among names that no prefix provides.
-
-    A package counts as provided if a prefix of AMENT_PREFIX_PATH,
-    CMAKE_PREFIX_PATH or of the package's dependencies in the workspace has
-    its ament index entry or its CMake config file, which is what
-    find_package() will look for.
-    """
-    environ = os.environ if environ is None else environ
-    prefixes = [Path(p) for p in dependency_prefixes]
-    for variable in ('AMENT_PREFIX_PATH', 'CMAKE_PREFIX_PATH'):
-        prefixes += [Path(p) for p in
-                     environ.get(variable, '').split(os.pathsep) if p]
-    missing = []
-    for name in names:
-        share = Path('share')
-        candidates = (
-            share / 'ament_index' / 'resource_index' / 'packages' / name,
-            share / name / 'cmake' / f'{name}Config.cmake',
-            share / name / 'cmake' / f'{name}-config.cmake')
-        if not any((prefix / c).exists()
-                   for prefix in prefixes for c in candidates):
-            missing.append(name)
-    return missing

@@ -1,0 +1,101 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+import os
+from pathlib import Path
+
+from colcon_core.logging import colcon_logger
+from colcon_core.package_selection import PackageSelectionExtensionPoint
+from colcon_core.plugin_system import satisfies_version
+
+from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
+
+#: What a C++ component needs from a prefix and PyPI has not.
+CPP_PREFIX_PACKAGES = CPP_CLIENT_PACKAGES + ('rclcpp_action', )
+
+logger = colcon_logger.getChild(__name__)
+
+#: The verbs that build or test packages: the others (list, graph, info,
+#: robmosys-generate) show and generate every package.
+_BUILDING_VERBS = ('build', 'test')
+
+
+class RobmosysPackageSelection(PackageSelectionExtensionPoint):
+    """Skip C++ components where no prefix provides rclcpp.
+
+    rclcpp is not on PyPI: a workspace of models still builds everything else
+    on a machine without it, and colcon says which packages it skipped and
+    why, instead of reporting them as finished.
+    """
+
+    # after the selection arguments of the user (colcon-package-selection
+    # runs at the default priority): only what they selected is looked at
+    PRIORITY = 50
+
+    def __init__(self):  # noqa: D107
+        super().__init__()
+        satisfies_version(
+            PackageSelectionExtensionPoint.EXTENSION_POINT_VERSION, '^1.0')
+
+    def select_packages(self, *, args, decorators):  # noqa: D102
+        if getattr(args, 'verb_name', None) not in _BUILDING_VERBS:
+            return
+        in_workspace = {d.descriptor.name for d in decorators}
+        skipped = set()
+        for decorator in decorators:
+            pkg = decorator.descriptor
+            if not decorator.selected or pkg.type != 'robmosys.component':
+                continue
+            depends = pkg.get_dependencies(categories=('build', ))
+            needs = [name for name in CPP_PREFIX_PACKAGES
+                     if name in depends and name not in in_workspace]
+            missing = missing_prefix_packages(needs)
+            if missing:
+                decorator.selected = False
+                skipped.add(pkg.name)
+                logger.warning(
+                    f"Skipping '{pkg.name}': it needs {', '.join(missing)}, "
+                    'which no prefix on AMENT_PREFIX_PATH or '
+                    'CMAKE_PREFIX_PATH provides (source a ROS 2 install that '
+                    'has them; `colcon robmosys-generate --output-dir DIR` '
+                    'writes its sources)')
+        # what only runs a skipped component (a system launching it) still
+        # builds: colcon would look for the skipped package's install
+        if not skipped:
+            return
+        for decorator in decorators:
+            dependencies = decorator.descriptor.dependencies
+            for category, names in dependencies.items():
+                dependencies[category] = {
+                    d for d in names if d not in skipped}
+            # the build verb reads these, computed before the selection
+            recursive = getattr(decorator, 'recursive_dependencies', None)
+            if recursive is not None:
+                decorator.recursive_dependencies = [
+                    d for d in recursive if d not in skipped]
+
+
+def missing_prefix_packages(names, dependency_prefixes=(), environ=None):
+    """Return the packages among names that no prefix provides.
+
+    A package counts as provided if a prefix of AMENT_PREFIX_PATH,
+    CMAKE_PREFIX_PATH or of the package's dependencies in the workspace has
+    its ament index entry or its CMake config file, which is what
+    find_package() will look for.
+    """
+    environ = os.environ if environ is None else environ
+    prefixes = [Path(p) for p in dependency_prefixes]
+    for variable in ('AMENT_PREFIX_PATH', 'CMAKE_PREFIX_PATH'):
+        prefixes += [Path(p) for p in
+                     environ.get(variable, '').split(os.pathsep) if p]
+    missing = []
+    for name in names:
+        share = Path('share')
+        candidates = (
+            share / 'ament_index' / 'resource_index' / 'packages' / name,
+            share / name / 'cmake' / f'{name}Config.cmake',
+            share / name / 'cmake' / f'{name}-config.cmake')
+        if not any((prefix / c).exists()
+                   for prefix in prefixes for c in candidates):
+            missing.append(name)
+    return missing

@@ -1,0 +1,68 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""What README tells a newcomer works as written; docs hold no one's machine."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+import re
+import shlex
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+from colcon_robmosys.devtools import ros_env
+from conftest import REPO, requires_ros, TEST_WORKSPACE
+
+#: Paths of a developer's machine or of a test run, which no reader has.
+MACHINE_PATH = re.compile(r'(?<![\w.])/(?:work|home/\w+|root|tmp/pytest-\w+)/')
+
+
+def _shell_block() -> list[str]:
+    """Return the lines of README's block about one's own shell."""
+    text = (REPO / 'README.md').read_text()
+    block = re.search(r'in your own shell.*?```sh\n(.*?)```', text, re.DOTALL)
+    assert block, 'README shows how to use the tools in your own shell'
+    return [line.split('#')[0].strip() for line in block.group(1).splitlines()]
+
+
+def test_readme_starts_with_the_two_commands():
+    head = (REPO / 'README.md').read_text().split('\n## ')[0]
+    assert re.search(r'^make demo\b', head, re.MULTILINE)
+    assert re.search(r'^make test\b', head, re.MULTILINE)
+
+
+@requires_ros
+@pytest.mark.integration
+def test_the_shell_lines_of_readme_build_a_workspace(tmp_path):
+    """A fresh shell with README's source line builds an interface package."""
+    source, build = _shell_block()[:2]
+    assert source == 'source .venv/local_setup.bash'
+    assert build.startswith('cd test_workspace && colcon build')
+    shutil.copytree(TEST_WORKSPACE / 'src' / 'simple_msgs', tmp_path / 'src' / 'simple_msgs')
+    # the venv of this test run stands where README's .venv does
+    script = (f'{source.replace(".venv", shlex.quote(sys.prefix))} && '
+              f'cd {shlex.quote(str(tmp_path))} && colcon build && '
+              'source install/setup.bash && '
+              'python3 -c "from simple_msgs.msg import OGM; print(OGM().width)"')
+    # a newcomer's shell: no ROS variable, no venv on PATH
+    env = {k: v for k, v in ros_env.loopback_env(ros_env.free_domain_id()).items()
+           if not k.startswith(('AMENT_', 'CMAKE_', 'COLCON', 'VIRTUAL_ENV'))}
+    env['PATH'] = os.pathsep.join(p for p in os.environ['PATH'].split(os.pathsep)
+                                  if not p.startswith(sys.prefix))
+    env['HOME'] = str(tmp_path)
+    result = subprocess.run(['bash', '-c', script], env=env, capture_output=True, text=True,
+                            timeout=600)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert result.stdout.splitlines()[-1] == '0'
+
+
+@pytest.mark.parametrize('document', sorted(
+    [REPO / 'README.md', *(REPO / 'docs').glob('*.md'), *(REPO / 'bench').glob('*.md'),
+     *(REPO / 'tests' / 'golden').glob('*.md')]), ids=lambda p: p.name)
+def test_documents_hold_no_machine_path(document: Path):
+    found = [line for line in document.read_text().splitlines() if MACHINE_PATH.search(line)]
+    assert found == []
