@@ -21,7 +21,8 @@ import sys
 import pytest
 
 from colcon_robmosys.devtools import ros_env
-from colcon_robmosys.devtools.system import LifecycleDriver, read_launch_file, wait_until
+from colcon_robmosys.devtools.system import (
+    activate_launch_file, LifecycleDriver, nodes_launch_file, read_launch_file, wait_until)
 from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
 from colcon_robmosys.package_selection.robmosys import missing_prefix_packages
 from conftest import requires_ros
@@ -52,7 +53,7 @@ def test_cpp_packages_are_built_or_skipped_with_the_reason(test_workspace_built)
     """Without rclcpp the build skips them, says why, and builds the system."""
     install, output = test_workspace_built.install, test_workspace_built.build_output
     share = test_workspace_built.share(SYSTEM)
-    assert (share / 'launch' / 'activate.py').is_file()
+    assert activate_launch_file(share).is_file()
     for package in CPP_PACKAGES:
         executable = install / package / 'lib' / package
         skipped = f"Skipping '{package}': it needs rclcpp"
@@ -74,7 +75,7 @@ def test_cpp_packages_are_built_or_skipped_with_the_reason(test_workspace_built)
 def _system(built, domain_id: int, names: list[str]):
     """Start some instances of mixed_system as its launch.py would."""
     share = built.share(SYSTEM)
-    nodes = {n.name: n for n in read_launch_file(share / 'launch' / 'launch.py', share)}
+    nodes = {n.name: n for n in read_launch_file(nodes_launch_file(share), share)}
     env = built.env(domain_id)
     with contextlib.ExitStack() as stack:
         processes = {name: stack.enter_context(

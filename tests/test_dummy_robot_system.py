@@ -24,7 +24,8 @@ from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.devtools.ros_env import background
 from colcon_robmosys.devtools.system import (
-    activation_waves, LifecycleDriver, read_activate_after, read_launch_file, wait_until)
+    activate_launch_file, activation_waves, LifecycleDriver, nodes_launch_file,
+    read_activate_after, read_launch_file, wait_until)
 from colcon_robmosys.model.types import Component, Instance, Language, System
 from conftest import requires_ros, TEST_WORKSPACE
 
@@ -88,9 +89,9 @@ def test_dummy_robot_comes_up_in_order_and_every_connection_carries_data(
             'cpp_dummy_map_server', 'cpp_dummy_joint_states', 'cpp_dummy_laser',
             'dummy_robot_monitor'}
     share = test_workspace_built.share(package)
-    nodes = {n.name: n for n in read_launch_file(share / 'launch' / 'launch.py', share)}
+    nodes = {n.name: n for n in read_launch_file(nodes_launch_file(share), share)}
     assert set(nodes) == {i.name for i in system.instances}
-    order = read_activate_after(share / 'launch' / 'activate.py')
+    order = read_activate_after(activate_launch_file(share))
     # the map server comes first, the unmanaged spare laser not at all
     assert order['map_server'] == [] and 'laser_spare' not in order
     assert all('map_server' in after for name, after in order.items() if name != 'map_server')

@@ -21,7 +21,7 @@ import pytest
 
 from colcon_robmosys.devtools.ros_env import Background, background, free_domain_id
 from colcon_robmosys.devtools.system import (
-    LifecycleDriver, NodeLaunch, read_launch_file, wait_until)
+    LifecycleDriver, NodeLaunch, nodes_launch_file, read_launch_file, wait_until)
 from conftest import BuiltWorkspace, requires_ros
 
 pytestmark = [pytest.mark.integration, requires_ros]
@@ -33,7 +33,7 @@ ACTIVATION_ORDER = ('receiver', 'sender', 'add_server', 'add_client', 'fibonacci
 def launched_nodes(built: BuiltWorkspace) -> dict[str, NodeLaunch]:
     """Return the nodes of examples_system's launch.py, by instance name."""
     share = built.share('examples_system')
-    return {n.name: n for n in read_launch_file(share / 'launch' / 'launch.py', share)}
+    return {n.name: n for n in read_launch_file(nodes_launch_file(share), share)}
 
 
 @dataclass

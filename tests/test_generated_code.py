@@ -150,13 +150,14 @@ def _expected_nodes():
 
 
 @pytest.mark.parametrize('launch_file', [
-    'launch.py', 'activate.py', 'launch.publisher.py', 'activate.publisher.py',
-    'launch.subscriber.py', 'activate.subscriber.py'])
+    f'pubsub_system{instance}{kind}.launch.py' for instance in ('', '.publisher', '.subscriber')
+    for kind in ('', '.nodes')])
 def test_launch_files_follow_the_system_model(generated, launch_file):
     system, expected = _expected_nodes()
     share = generated / 'pubsub_system'
     nodes = read_launch_file(share / 'launch' / launch_file, share)
-    instance = launch_file.split('.')[1] if launch_file.count('.') == 2 else None
+    parts = launch_file.removesuffix('.launch.py').removesuffix('.nodes').split('.')
+    instance = parts[1] if len(parts) == 2 else None
     wanted = [i.name for i in system.instances if instance in (None, i.name)]
     assert [n.name for n in nodes] == wanted
     for node in nodes:

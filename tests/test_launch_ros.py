@@ -46,7 +46,10 @@ def launch_env(test_workspace_built, domain_id):
 
 
 @pytest.mark.parametrize('launch_files', [
-    ['activate.py'], ['activate.publisher.py', 'activate.subscriber.py']])
+    ['pubsub_system.launch.py'],
+    ['pubsub_system.publisher.launch.py', 'pubsub_system.subscriber.launch.py'],
+    # the name of the last release, an alias that includes pubsub_system.launch.py
+    ['activate.py']])
 def test_activate_brings_the_system_up(test_workspace_built, launch_env, launch_files):
     share = test_workspace_built.share('pubsub_system')
     with contextlib.ExitStack() as stack:
@@ -63,8 +66,8 @@ def test_activate_brings_the_system_up(test_workspace_built, launch_env, launch_
 def test_launch_leaves_the_nodes_unconfigured(test_workspace_built, launch_env, domain_id):
     from colcon_robmosys.devtools.system import LifecycleDriver
     share = test_workspace_built.share('pubsub_system')
-    with background([sys.executable, '-c', LAUNCHER, str(share / 'launch' / 'launch.py')],
-                    env=launch_env):
+    with background([sys.executable, '-c', LAUNCHER,
+                     str(share / 'launch' / 'pubsub_system.nodes.launch.py')], env=launch_env):
         with LifecycleDriver(domain_id) as driver:
             assert driver.state('/publisher') == 'unconfigured'
             assert driver.state('/subscriber') == 'unconfigured'
@@ -74,7 +77,7 @@ def test_launch_leaves_the_nodes_unconfigured(test_workspace_built, launch_env, 
 
 def test_dummy_robot_activates_in_order_and_wires_every_connection(
         test_workspace_built, launch_env, domain_id):
-    """activate.py of dummy_robot_bringup: every connection carries data, the spare idles."""
+    """dummy_robot_bringup.launch.py: every connection carries data, the spare idles."""
     from colcon_robmosys.devtools.system import LifecycleDriver
     from test_dummy_robot_system import _model, effective_parameters, expected_report
     system, components = _model()
@@ -92,7 +95,8 @@ def test_dummy_robot_activates_in_order_and_wires_every_connection(
         driver = stack.enter_context(LifecycleDriver(domain_id))
         reached = driver.watch_transitions(list(fqns.values()))
         launched = stack.enter_context(background(
-            [sys.executable, '-c', LAUNCHER, str(share / 'launch' / 'activate.py')],
+            [sys.executable, '-c', LAUNCHER,
+             str(share / 'launch' / 'dummy_robot_bringup.launch.py')],
             env=launch_env))
 
         def up() -> bool:

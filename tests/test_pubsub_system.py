@@ -10,7 +10,8 @@ import re
 import pytest
 
 from colcon_robmosys.devtools.ros_env import background
-from colcon_robmosys.devtools.system import LifecycleDriver, read_launch_file, wait_until
+from colcon_robmosys.devtools.system import (
+    LifecycleDriver, nodes_launch_file, read_launch_file, wait_until)
 from conftest import requires_ros
 
 pytestmark = [pytest.mark.integration, requires_ros]
@@ -29,9 +30,10 @@ def test_installed_layout(test_workspace_built):
     assert (install / 'subscriber' / 'lib' / 'subscriber' / 'Subscriber').is_file()
     share = test_workspace_built.share('pubsub_system')
     names = {p.name for p in (share / 'launch').iterdir()}
-    assert names == {'launch.py', 'activate.py', 'launch.publisher.py',
-                     'activate.publisher.py', 'launch.subscriber.py',
-                     'activate.subscriber.py'}
+    stems = ['pubsub_system', 'pubsub_system.publisher', 'pubsub_system.subscriber']
+    assert names == {f'{stem}{kind}.launch.py' for stem in stems for kind in ('', '.nodes')} | {
+        'launch.py', 'activate.py', 'launch.publisher.py', 'activate.publisher.py',
+        'launch.subscriber.py', 'activate.subscriber.py'}
     assert (share / 'cfg' / 'params.yaml').is_file()
 
 
@@ -60,7 +62,7 @@ def test_hand_written_package_uses_generated_messages(test_workspace_built, doma
 def test_pubsub_system_runs(test_workspace_built, domain_id):
     """Start the nodes as launch.py would, activate them, and see maps arrive."""
     share = test_workspace_built.share('pubsub_system')
-    nodes = {n.name: n for n in read_launch_file(share / 'launch' / 'launch.py', share)}
+    nodes = {n.name: n for n in read_launch_file(nodes_launch_file(share), share)}
     assert set(nodes) == {'publisher', 'subscriber'}
     env = test_workspace_built.env(domain_id)
     install = test_workspace_built.install

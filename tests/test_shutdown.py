@@ -20,7 +20,8 @@ from typing import Iterator
 import pytest
 
 from colcon_robmosys.devtools.ros_env import Background, background, free_domain_id
-from colcon_robmosys.devtools.system import LifecycleDriver, read_launch_file, wait_until
+from colcon_robmosys.devtools.system import (
+    LifecycleDriver, nodes_launch_file, read_launch_file, wait_until)
 from conftest import BuiltWorkspace, requires_ros
 
 pytestmark = [pytest.mark.integration, requires_ros]
@@ -42,7 +43,7 @@ def _running(built: BuiltWorkspace, names: tuple[str, ...],
              activate: bool = True) -> Iterator[tuple[dict[str, Background], LifecycleDriver,
                                                       dict]]:
     share = built.share('examples_system')
-    nodes = {n.name: n for n in read_launch_file(share / 'launch' / 'launch.py', share)}
+    nodes = {n.name: n for n in read_launch_file(nodes_launch_file(share), share)}
     domain_id = free_domain_id()
     env = built.env(domain_id)
     with contextlib.ExitStack() as stack:
@@ -54,8 +55,11 @@ def _running(built: BuiltWorkspace, names: tuple[str, ...],
         if activate:
             for label in ('configure', 'activate'):
                 for name in names:
-                    assert driver.transition(nodes[name].fqn, label), \
-                        processes[name].output()
+                    try:
+                        done = driver.transition(nodes[name].fqn, label)
+                    except TimeoutError as error:
+                        pytest.fail(f'{name}: {label}: {error}:\n{processes[name].output()}')
+                    assert done, processes[name].output()
         yield processes, driver, nodes
 
 

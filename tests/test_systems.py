@@ -21,7 +21,8 @@ import yaml
 
 from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
-from colcon_robmosys.devtools.system import read_activate_after, read_launch_file
+from colcon_robmosys.devtools.system import (
+    activate_launch_file, read_activate_after, read_launch_file)
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
 from colcon_robmosys.model.types import Component, Pattern, Role, System, Workspace
@@ -90,11 +91,26 @@ def test_every_example_system_is_checked():
 
 
 def _launch_files(package: str) -> list[str]:
+    """Return the launch files of a system package, named as ROS 2 names them."""
     system = _system(package)
-    names = ['launch.py', 'activate.py']
+    stems = [package] + [f'{package}.{instance.name}' for instance in system.instances]
+    return [f'{package}/{stem}{kind}.launch.py' for stem in stems for kind in ('', '.nodes')]
+
+
+def _aliases(package: str) -> dict[str, str]:
+    """Return the launch files under their names of the last release, and what they include."""
+    system = _system(package)
+    aliases = {'launch.py': f'{package}.nodes.launch.py', 'activate.py': f'{package}.launch.py'}
     for instance in system.instances:
-        names += [f'launch.{instance.name}.py', f'activate.{instance.name}.py']
-    return [f'{package}/{name}' for name in names]
+        aliases[f'launch.{instance.name}.py'] = f'{package}.{instance.name}.nodes.launch.py'
+        aliases[f'activate.{instance.name}.py'] = f'{package}.{instance.name}.launch.py'
+    return aliases
+
+
+def _instance_of(name: str) -> str | None:
+    """Return the instance a launch file is for, or None for the whole system."""
+    parts = name.removesuffix('.launch.py').removesuffix('.nodes').split('.')
+    return parts[1] if len(parts) == 2 else None
 
 
 LAUNCH_FILES = [f for package in SYSTEMS for f in _launch_files(package)]
@@ -103,7 +119,17 @@ LAUNCH_FILES = [f for package in SYSTEMS for f in _launch_files(package)]
 def test_the_launch_folder_holds_exactly_these_files(generated):
     for package in SYSTEMS:
         found = {f'{package}/{p.name}' for p in (generated / package / 'launch').iterdir()}
-        assert found == set(_launch_files(package))
+        assert found == set(_launch_files(package)) | {
+            f'{package}/{alias}' for alias in _aliases(package)}
+
+
+def test_the_names_of_the_last_release_include_the_new_files(generated):
+    for package in SYSTEMS:
+        for alias, target in _aliases(package).items():
+            tree = ast.parse((generated / package / 'launch' / alias).read_text())
+            strings = {n.value for n in ast.walk(tree) if isinstance(n, ast.Constant)}
+            assert target in strings, alias
+            assert f'{alias} is deprecated: use ' in strings
 
 
 @pytest.mark.parametrize('launch_file', LAUNCH_FILES)
@@ -112,7 +138,7 @@ def test_launch_file_follows_the_system_model(generated, launch_file):
     system = _system(package)
     share = generated / package
     nodes = read_launch_file(share / 'launch' / name, share)
-    instance = name.split('.')[1] if name.count('.') == 2 else None
+    instance = _instance_of(name)
     wanted = [i for i in system.instances if instance in (None, i.name)]
     assert sorted(n.name for n in nodes) == sorted(i.name for i in wanted)
     remappings = expected_remappings(system)
@@ -128,13 +154,13 @@ def test_launch_file_follows_the_system_model(generated, launch_file):
         assert node.extra == LAUNCH_EXTRA
 
 
-@pytest.mark.parametrize('launch_file', [f for f in LAUNCH_FILES if '/activate' in f])
+@pytest.mark.parametrize('launch_file', [f for f in LAUNCH_FILES if '.nodes.' not in f])
 def test_activate_file_follows_the_activation_model(generated, launch_file):
-    """activate*.py manages the instances with activate: true, in their order."""
+    """<system>[.<instance>].launch.py manages the instances with activate: true, in order."""
     package, name = launch_file.split('/')
     system = _system(package)
     activate_after = read_activate_after(generated / package / 'launch' / name)
-    instance = name.split('.')[1] if name.count('.') == 2 else None
+    instance = _instance_of(name)
     managed = [i for i in system.instances if i.activate and instance in (None, i.name)]
     in_file = {i.name for i in managed}
     # a file waits only for the instances it activates itself
@@ -206,7 +232,7 @@ def test_diagram_shows_instances_ports_and_typed_connections(generated, package)
 
 def test_activate_file_names_what_a_failed_instance_holds_back(generated):
     """A failed transition is reported with the instances that now wait in vain."""
-    source = (generated / 'dummy_robot_bringup' / 'launch' / 'activate.py').read_text()
+    source = activate_launch_file(generated / 'dummy_robot_bringup').read_text()
     tree = ast.parse(source)
     # the table and the pure function only: launch itself is not installed here
     keep = [n for n in tree.body if (isinstance(n, ast.Assign) and
@@ -275,7 +301,7 @@ def test_warnings_are_told_by_the_verb_and_the_build_without_failing(
     assert f'--- stderr: dummy_robot_bringup\n{_warning_line(unwired)}\n---\n' in output
     assert '1 package had stderr output: dummy_robot_bringup' in output
     share = unwired / 'install' / 'dummy_robot_bringup' / 'share' / 'dummy_robot_bringup'
-    assert (share / 'launch' / 'activate.py').is_file()
+    assert activate_launch_file(share).is_file()
     assert (share / 'doc' / 'dummy_robot_bringup.dot').is_file()
     assert (share / 'doc' / 'dummy_robot_bringup.svg').is_file() is \
         (shutil.which('dot') is not None)

@@ -20,7 +20,8 @@ import time
 
 from colcon_robmosys.devtools import ros_env
 from colcon_robmosys.devtools.system import (
-    activation_waves, LifecycleDriver, read_activate_after, read_launch_file)
+    activate_launch_file, activation_waves, LifecycleDriver, nodes_launch_file,
+    read_activate_after, read_launch_file)
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -42,9 +43,9 @@ def run_system(system: str, domain_id: int, seconds: float) -> None:
     """Start the system's nodes, activate them and show what they print."""
     install = WORKSPACE / 'install'
     share = install / system / 'share' / system
-    nodes = read_launch_file(share / 'launch' / 'launch.py', share)
+    nodes = read_launch_file(nodes_launch_file(share), share)
     by_name = {node.name: node for node in nodes}
-    managed = activation_waves(read_activate_after(share / 'launch' / 'activate.py'))
+    managed = activation_waves(read_activate_after(activate_launch_file(share)))
     env = ros_env.workspace_env(install, ros_env.loopback_env(domain_id))
     print(f'==> starting {system} (ROS_DOMAIN_ID={domain_id}, DDS on loopback)')
     with contextlib.ExitStack() as stack:

@@ -61,6 +61,18 @@ def _literal(node: ast.AST, names: dict[str, Any]) -> Any:
     return ast.literal_eval(node)
 
 
+def nodes_launch_file(share_dir: Path, instance: str = '') -> Path:
+    """Return the launch file of a system package that starts its nodes (all, or one)."""
+    stem = share_dir.name + (f'.{instance}' if instance else '')
+    return share_dir / 'launch' / f'{stem}.nodes.launch.py'
+
+
+def activate_launch_file(share_dir: Path, instance: str = '') -> Path:
+    """Return the launch file of a system package that starts and activates its nodes."""
+    stem = share_dir.name + (f'.{instance}' if instance else '')
+    return share_dir / 'launch' / f'{stem}.launch.py'
+
+
 def read_launch_file(path: Path, share_dir: Path) -> list[NodeLaunch]:
     """Return the lifecycle nodes a generated launch file starts.
 
@@ -132,6 +144,11 @@ def wait_until(condition: Callable[[], bool], timeout: float, period: float = 0.
     return condition()
 
 
+#: transition label -> the state a node is in once it went through it
+GOAL_STATES = {'configure': 'inactive', 'activate': 'active', 'deactivate': 'inactive',
+               'cleanup': 'unconfigured', 'shutdown': 'finalized'}
+
+
 class LifecycleDriver:
     """An rclpy node in this process that calls lifecycle and parameter services.
 
@@ -167,18 +184,34 @@ class LifecycleDriver:
     def __exit__(self, *exc_info: object) -> None:
         self.close()
 
-    def _call(self, srv_type: type, name: str, request: Any, timeout: float) -> Any:
+    def _client(self, srv_type: type, name: str, timeout: float) -> Any:
         key = (srv_type, name)
         if key not in self._clients:
             self._clients[key] = self.node.create_client(srv_type, name)
         client = self._clients[key]
         if not client.wait_for_service(timeout_sec=timeout):
             raise TimeoutError(f'service {name} did not appear within {timeout} s')
-        future = client.call_async(request)
-        self.executor.spin_until_future_complete(future, timeout_sec=timeout)
-        if not future.done():
-            raise TimeoutError(f'service {name} did not answer within {timeout} s')
-        return future.result()
+        return client
+
+    def _call(self, srv_type: type, name: str, request: Any, timeout: float,
+              attempt: float = 5.0) -> Any:
+        """Call a service whose request can be repeated, until it answers.
+
+        A request sent before the server's answer reaches this client (DDS
+        matches the two directions of a service one at a time) is answered
+        into the void: it is sent again after ``attempt`` seconds.
+        """
+        deadline = time.monotonic() + timeout
+        client = self._client(srv_type, name, timeout)
+        while True:
+            future = client.call_async(request)
+            left = deadline - time.monotonic()
+            self.executor.spin_until_future_complete(future, timeout_sec=min(attempt, left))
+            if future.done():
+                return future.result()
+            client.remove_pending_request(future)
+            if time.monotonic() >= deadline:
+                raise TimeoutError(f'service {name} did not answer within {timeout} s')
 
     def state(self, fqn: str, timeout: float = 20.0) -> str:
         """Return the label of the node's current lifecycle state."""
@@ -189,14 +222,33 @@ class LifecycleDriver:
     def transition(self, fqn: str, label: str, timeout: float = 20.0) -> bool:
         """Ask a node to change its lifecycle state; return whether it did.
 
+        An answer that does not come is asked again of ``get_state``: a
+        transition cannot be requested twice, but its goal state can be read.
+
         :param label: the transition, e.g. ``configure``
         """
         from lifecycle_msgs.msg import Transition
         from lifecycle_msgs.srv import ChangeState
+        deadline = time.monotonic() + timeout
+        name = f'{fqn}/change_state'
+        client = self._client(ChangeState, name, timeout)
         request = ChangeState.Request()
         request.transition = Transition(
             id=getattr(Transition, f'TRANSITION_{label.upper()}'))
-        return self._call(ChangeState, f'{fqn}/change_state', request, timeout).success
+        start = self.state(fqn, timeout)
+        while True:
+            future = client.call_async(request)
+            left = deadline - time.monotonic()
+            self.executor.spin_until_future_complete(future, timeout_sec=min(5.0, left))
+            if future.done():
+                return bool(future.result().success)
+            client.remove_pending_request(future)
+            now = self.state(fqn, max(deadline - time.monotonic(), 1.0))
+            if now == GOAL_STATES[label]:
+                return True
+            if now != start or time.monotonic() >= deadline:
+                raise TimeoutError(f'service {name} did not answer within {timeout} s '
+                                   f'(state: {now})')
 
     def request_transition(self, fqn: str, label: str, timeout: float = 20.0) -> Any:
         """Ask a node to change its lifecycle state, without waiting for the answer.
@@ -205,12 +257,7 @@ class LifecycleDriver:
         """
         from lifecycle_msgs.msg import Transition
         from lifecycle_msgs.srv import ChangeState
-        key = (ChangeState, f'{fqn}/change_state')
-        if key not in self._clients:
-            self._clients[key] = self.node.create_client(*key)
-        client = self._clients[key]
-        if not client.wait_for_service(timeout_sec=timeout):
-            raise TimeoutError(f'service {key[1]} did not appear within {timeout} s')
+        client = self._client(ChangeState, f'{fqn}/change_state', timeout)
         request = ChangeState.Request()
         request.transition = Transition(
             id=getattr(Transition, f'TRANSITION_{label.upper()}'))

@@ -13,8 +13,12 @@ from colcon_robmosys.mapping.system import PARAMS_FILE, SystemPackage
 
 #: template -> output path, once per launch file (all instances, then each)
 LAUNCH_FILES = (
-    Row('launch/launch{suffix}.py', 'system/launch.py.jinja'),
-    Row('launch/activate{suffix}.py', 'system/activate.py.jinja'),
+    Row('launch/{nodes_file}', 'system/launch.py.jinja'),
+    Row('launch/{activate_file}', 'system/activate.py.jinja'),
+    # the names of the last release, kept for one more
+    Row('launch/launch{suffix}.py', 'system/alias.launch.py.jinja', part='nodes_alias'),
+    Row('launch/activate{suffix}.py', 'system/alias.launch.py.jinja',
+        part='activate_alias'),
 )
 
 #: template -> output path

@@ -39,8 +39,26 @@ class SystemNode:
 
 
 @dataclass(frozen=True)
+class LaunchAlias:
+    """A launch file under its name of the last release, including its new one."""
+
+    banner: Banner
+    package: str
+    old: str
+    new: str
+
+
+@dataclass(frozen=True)
 class LaunchFile:
-    """A launch file, and its activate twin: all instances or one."""
+    """A launch file, and its activate twin: all instances or one.
+
+    Named as ROS 2 names launch files, ``<name>.launch.py``: the system's
+    ``<system>.launch.py`` starts and activates every instance,
+    ``<system>.nodes.launch.py`` only starts them; each instance has
+    ``<system>.<instance>.launch.py`` and ``<system>.<instance>.nodes.launch.py``
+    (an instance may not be called ``nodes``). The names of the last release,
+    ``launch{suffix}.py`` and ``activate{suffix}.py``, stay as aliases.
+    """
 
     suffix: str
     banner: Banner
@@ -48,6 +66,33 @@ class LaunchFile:
     params_file: str
     nodes: tuple[SystemNode, ...]
     what: str
+
+    @property
+    def stem(self) -> str:
+        """Return the name the launch files share: the system's, or with an instance."""
+        return f'{self.package}{self.suffix}'
+
+    @property
+    def activate_file(self) -> str:
+        """Return the file name of the launch file that also activates."""
+        return f'{self.stem}.launch.py'
+
+    @property
+    def nodes_file(self) -> str:
+        """Return the file name of the launch file that only starts the nodes."""
+        return f'{self.stem}.nodes.launch.py'
+
+    @property
+    def activate_alias(self) -> LaunchAlias:
+        """Return the alias of the activating file under its former name."""
+        return LaunchAlias(self.banner, self.package, f'activate{self.suffix}.py',
+                           self.activate_file)
+
+    @property
+    def nodes_alias(self) -> LaunchAlias:
+        """Return the alias of the starting file under its former name."""
+        return LaunchAlias(self.banner, self.package, f'launch{self.suffix}.py',
+                           self.nodes_file)
 
 
 @dataclass(frozen=True)

@@ -47,6 +47,11 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
         for iname, body in raw['instances'].items():
             ipath = path + ('instances', iname)
             self.check_identifier(ipath, 'instance name', iname)
+            if iname == 'nodes':
+                # <system>.nodes.launch.py starts every instance
+                self.error(ipath, "instance name 'nodes' is reserved: "
+                           '<system>.nodes.launch.py is the launch file of '
+                           'every instance', key=True)
             namespace = body.get('namespace', '')
             if namespace and not namespace.startswith('/'):
                 namespace = '/' + namespace
