@@ -230,21 +230,22 @@ def test_diagram_shows_instances_ports_and_typed_connections(generated, package)
                 port.pattern.value, str(port.type), name) in edges
 
 
-def test_activate_file_names_what_a_failed_instance_holds_back(generated):
-    """A failed transition is reported with the instances that now wait in vain."""
+def test_activate_file_drives_the_managed_instances_by_their_node_names(generated):
+    """The launch file hands SystemActivation the managed instances and their order.
+
+    What SystemActivation does with them (levels, failures reported with what
+    they hold back, timeouts) is tested on rclpy with the runtime
+    (robmosys_runtime/test/test_activation.py).
+    """
     source = activate_launch_file(generated / 'dummy_robot_bringup').read_text()
     tree = ast.parse(source)
-    # the table and the pure function only: launch itself is not installed here
-    keep = [n for n in tree.body if (isinstance(n, ast.Assign) and
-                                     ast.unparse(n.targets[0]) == 'ACTIVATE_AFTER') or
-            (isinstance(n, ast.FunctionDef) and n.name == '_waiting_for')]
-    namespace: dict = {}
-    exec(compile(ast.Module(body=keep, type_ignores=[]), 'activate.py', 'exec'), namespace)
-    waiting_for = namespace['_waiting_for']
-    assert waiting_for('map_server') == ['joints', 'laser_front', 'laser_rear', 'monitor',
-                                         'monitor_ops']
-    assert waiting_for('joints') == ['monitor']
-    assert waiting_for('monitor') == []
+    tables = {ast.unparse(n.targets[0]): ast.literal_eval(n.value) for n in tree.body
+              if isinstance(n, ast.Assign)}
+    system = _system('dummy_robot_bringup')
+    managed = [i for i in system.instances if i.activate]
+    assert tables['NODES'] == {i.name: f'{i.namespace}/{i.name}' for i in managed}
+    assert set(tables['ACTIVATE_AFTER']) == set(tables['NODES'])
+    assert 'SystemActivation(get_ros_node(context), NODES, ACTIVATE_AFTER' in source
 
 
 # warnings -------------------------------------------------------------------

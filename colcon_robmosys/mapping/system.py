@@ -10,6 +10,7 @@ from typing import Any
 
 from colcon_robmosys.mapping.common import (
     Banner, banner_of, package_xml, PackageXml, unique)
+from colcon_robmosys.mapping.cpp import RUNTIME_PACKAGE
 from colcon_robmosys.mapping.names import connection_name, node_name
 from colcon_robmosys.mapping.portkinds import port_kind
 from colcon_robmosys.model.parameters import freeze_parameter_value
@@ -294,8 +295,9 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
     nodes = tuple(_node(i, components[i.name], topics)
                   for i in activation_order(system))
     packages = unique(c.package for c in components.values())
+    # robmosys_runtime: the launch files activate with its SystemActivation
     exec_depends = packages + ('launch', 'launch_ros', 'lifecycle_msgs',
-                               'ament_index_python')
+                               'ament_index_python', RUNTIME_PACKAGE)
     return SystemPackage(
         banner=banner, package=system.package, name=system.name, nodes=nodes,
         launch_files=_launch_files(system, nodes, banner),

@@ -97,7 +97,8 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
             kind = 'interfaces' if isinstance(model, ServiceDefinition) else \
                 'component' if isinstance(model, Component) else 'system'
             dependencies = model_dependencies(model)
-            if isinstance(model, Component):
+            if not isinstance(model, ServiceDefinition):
+                # components run on it; systems activate with it
                 dependencies += (RUNTIME_PACKAGE, )
             if isinstance(model, Component) and \
                     model.language is Language.CPP:

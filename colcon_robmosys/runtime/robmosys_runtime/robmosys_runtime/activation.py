@@ -1,0 +1,238 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""
+Bring the managed instances of a system up: configure them, activate them in order.
+
+Each instance is driven through its lifecycle services (``get_state``,
+``change_state``), never by waiting for ``transition_event`` messages alone:
+those are volatile, and one published before the subscription matched is
+lost, which left bring-ups waiting forever. Every instance is configured at
+once; each is activated as soon as it is inactive and the instances it comes
+after are active. A failure is reported with what it holds back.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+import threading
+import time
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Set
+
+from lifecycle_msgs.msg import Transition
+from lifecycle_msgs.srv import ChangeState, GetState
+from rclpy.node import Node
+
+#: transition -> the state a node is in once it went through it
+GOAL_STATES = {Transition.TRANSITION_CONFIGURE: 'inactive',
+               Transition.TRANSITION_ACTIVATE: 'active'}
+
+#: what the report says of a transition that failed
+VERBS = {Transition.TRANSITION_CONFIGURE: 'configure',
+         Transition.TRANSITION_ACTIVATE: 'activate'}
+
+
+class _Stopped(Exception):
+    """The bring-up was stopped (the launch or the process ends)."""
+
+
+class _Failed(Exception):
+    """An instance that cannot be brought up, and why."""
+
+
+@dataclass
+class Outcome:
+    """What became of the instances: active, failed (and why), held back (by what)."""
+
+    active: List[str] = field(default_factory=list)
+    failed: Dict[str, str] = field(default_factory=dict)
+    held_back: Dict[str, List[str]] = field(default_factory=dict)
+
+    @property
+    def ok(self) -> bool:
+        """Tell whether every instance is active."""
+        return not self.failed and not self.held_back
+
+
+class SystemActivation:
+    """
+    Configure every managed instance and activate each after the ones it names.
+
+    The node's executor must spin in another thread (launch_ros spins its own
+    node; a test spins one): answers are waited for on events.
+
+    :param instances: instance name -> fully qualified node name
+    :param after: instance name -> the instances that must be active first
+    :param timeout: seconds for each instance to appear and for each transition
+    :param report: called with ``(level, text)``, level ``'info'`` or ``'error'``
+    """
+
+    def __init__(self, node: Node, instances: Mapping[str, str],
+                 after: Mapping[str, Sequence[str]], *, timeout: float = 60.0,
+                 report: Optional[Callable[[str, str], None]] = None) -> None:
+        self._node = node
+        self._instances = dict(instances)
+        self._after = {name: list(after.get(name, ())) for name in instances}
+        self._timeout = timeout
+        self._report = report or self._log
+        self._states: Dict[str, str] = {}
+        self._failed: Dict[str, str] = {}
+        self._changed = threading.Condition()
+        self._stop = threading.Event()
+        self._threads: List[threading.Thread] = []
+
+    def _log(self, level: str, text: str) -> None:
+        logger = self._node.get_logger()
+        (logger.error if level == 'error' else logger.info)(text)
+
+    def start(self) -> None:
+        """Start bringing every instance up, each in a thread of its own."""
+        for name in self._instances:
+            thread = threading.Thread(target=self._bring_up, args=(name,), daemon=True,
+                                      name=f'activate {name}')
+            thread.start()
+            self._threads.append(thread)
+
+    def wait(self, timeout: Optional[float] = None) -> Outcome:
+        """Wait until every instance is active or cannot be; return the outcome."""
+        deadline = None if timeout is None else time.monotonic() + timeout
+        for thread in self._threads:
+            thread.join(None if deadline is None else max(0.0, deadline - time.monotonic()))
+        with self._changed:
+            outcome = Outcome(active=sorted(n for n, s in self._states.items() if s == 'active'),
+                              failed=dict(self._failed))
+        for name in self._instances:
+            if name not in outcome.active and name not in outcome.failed:
+                outcome.held_back[name] = self._blockers(name)
+        return outcome
+
+    def stop(self) -> None:
+        """Stop bringing instances up, quietly: the system is shutting down."""
+        self._stop.set()
+        with self._changed:
+            self._changed.notify_all()
+
+    # one instance
+
+    def _bring_up(self, name: str) -> None:
+        try:
+            state = self._get_state(name) or 'unknown'
+            if state == 'unconfigured':
+                state = self._change(name, Transition.TRANSITION_CONFIGURE)
+            if state == 'inactive':
+                self._wait_for_predecessors(name)
+                state = self._change(name, Transition.TRANSITION_ACTIVATE)
+            self._set(name, state)
+            if state != 'active':
+                self._fail(name, f'is {state}, not active')
+        except _Stopped:
+            return
+        except _Failed as failure:
+            self._fail(name, str(failure))
+
+    def _wait_for_predecessors(self, name: str) -> None:
+        with self._changed:
+            while True:
+                if self._stop.is_set():
+                    raise _Stopped()
+                if any(other in self._failed for other in self._after[name]):
+                    # held back: the report of the failure names it
+                    raise _Stopped()
+                if all(self._states.get(other) == 'active' for other in self._after[name]):
+                    return
+                self._changed.wait(0.5)
+
+    def _set(self, name: str, state: str) -> None:
+        with self._changed:
+            self._states[name] = state
+            self._changed.notify_all()
+
+    def _fail(self, name: str, why: str) -> None:
+        if self._stop.is_set() or not self._node.context.ok():
+            return
+        with self._changed:
+            self._failed[name] = why
+            self._changed.notify_all()
+        waiting = self._waiting_for(name)
+        also = f'; not activated because of it: {", ".join(waiting)}' if waiting else ''
+        self._report('error', f'instance {name} {why}{also}')
+
+    def _blockers(self, name: str) -> List[str]:
+        """Return the failed instances that name waits for, directly or not."""
+        seen: Set[str] = set()
+        todo = list(self._after[name])
+        while todo:
+            other = todo.pop()
+            if other not in seen:
+                seen.add(other)
+                todo += self._after.get(other, [])
+        return sorted(seen & set(self._failed))
+
+    def _waiting_for(self, name: str) -> List[str]:
+        """Return the instances that come after name, directly or not."""
+        waiting: Set[str] = set()
+        grew = True
+        while grew:
+            grew = False
+            for candidate, after in self._after.items():
+                if candidate not in waiting and (name in after or waiting & set(after)):
+                    waiting.add(candidate)
+                    grew = True
+        return sorted(waiting)
+
+    # services
+
+    def _call(self, client: Any, request: Any, wait: float) -> Any:
+        """Call a service; return its answer, or None if none came within wait seconds."""
+        answered = threading.Event()
+        future = client.call_async(request)
+        future.add_done_callback(lambda _: answered.set())
+        end = time.monotonic() + wait
+        while not answered.wait(0.1):
+            if self._stop.is_set() or not self._node.context.ok():
+                client.remove_pending_request(future)
+                raise _Stopped()
+            if time.monotonic() > end:
+                client.remove_pending_request(future)
+                return None
+        return future.result()
+
+    def _client(self, name: str, srv_type: Any, service: str) -> Any:
+        client: Any = self._node.create_client(srv_type, f'{self._instances[name]}/{service}')
+        deadline = time.monotonic() + self._timeout
+        while not client.wait_for_service(timeout_sec=0.2):
+            if self._stop.is_set() or not self._node.context.ok():
+                raise _Stopped()
+            if time.monotonic() > deadline:
+                raise _Failed(f'did not appear within {self._timeout:g} s')
+        return client
+
+    def _get_state(self, name: str, timeout: Optional[float] = None) -> Optional[str]:
+        """Return the state of an instance; None if it does not answer within timeout."""
+        client = self._client(name, GetState, 'get_state')
+        deadline = time.monotonic() + (self._timeout if timeout is None else timeout)
+        while True:
+            # an answer lost before the two ends matched both ways: ask again
+            answer = self._call(client, GetState.Request(), 2.0)
+            if answer is not None:
+                return str(answer.current_state.label)
+            if time.monotonic() > deadline:
+                if timeout is not None:
+                    return None
+                raise _Failed(f'did not tell its state within {self._timeout:g} s')
+
+    def _change(self, name: str, transition: int) -> str:
+        client = self._client(name, ChangeState, 'change_state')
+        request = ChangeState.Request()
+        request.transition = Transition(id=transition)
+        answer = self._call(client, request, self._timeout)
+        if answer is None:
+            # the answer may be lost where the transition was not: the state says
+            state = self._get_state(name, timeout=2.0)
+            if state == GOAL_STATES[transition]:
+                return state
+            now = f'it is {state}' if state else 'it does not answer'
+            raise _Failed(f'did not {VERBS[transition]} within {self._timeout:g} s ({now})')
+        state = self._get_state(name) or 'unknown'
+        if not answer.success:
+            raise _Failed(f'failed to {VERBS[transition]} (it is {state})')
+        return state
