@@ -270,3 +270,47 @@ def test_cpp_component_runs_in_a_container(test_workspace_built, domain_id):
         _bring_up(driver, ['/contained'])
         assert wait_until(lambda: 'Publishing map' in process.output(), timeout=20), \
             process.output()
+
+
+#: what a quiet shutdown never prints
+NOISE = re.compile(r'Traceback|terminate called|\[ERROR\]|exception|Segmentation')
+
+#: C++ instance of mixed_system -> its peer, and what one of them prints while working
+CPP_WORKING = {
+    'cpp_pub': ('py_sub', r'got map data'),
+    'sender': ('receiver', r'received'),
+    'cpp_sensor': ('py_watcher', r'event: level'),
+    'cpp_watcher': ('py_sensor', r'notified to'),
+}
+
+
+@requires_rclcpp
+@pytest.mark.parametrize('signum', [signal.SIGINT, signal.SIGTERM], ids=['SIGINT', 'SIGTERM'])
+@pytest.mark.parametrize('name', sorted(CPP_WORKING))
+def test_a_signal_while_working_ends_a_cpp_node_quietly(test_workspace_built, name, signum):
+    """As tests/test_shutdown.py for Python: exit 0, nothing on the console."""
+    peer, working = CPP_WORKING[name]
+    with _system(test_workspace_built, ros_env.free_domain_id(), [name, peer]) as (
+            fqn, out, driver):
+        # servers before clients: the sensors before the watchers
+        order = [peer, name] if name.endswith('watcher') else [name, peer]
+        _bring_up(driver, [fqn[n] for n in order])
+        assert wait_until(lambda: re.search(working, out[name].output() + out[peer].output())
+                          is not None, timeout=30), out[name].output() + out[peer].output()
+        process = out[name].proc
+        process.send_signal(signum)
+        assert process.wait(timeout=15) == 0, out[name].output()
+        assert not NOISE.search(out[name].output()), out[name].output()
+
+
+@requires_rclcpp
+def test_a_second_signal_ends_a_cpp_node_promptly(test_workspace_built):
+    with _system(test_workspace_built, ros_env.free_domain_id(), ['cpp_pub', 'py_sub']) as (
+            fqn, out, driver):
+        _bring_up(driver, [fqn['cpp_pub'], fqn['py_sub']])
+        assert wait_until(lambda: MAPS.search(out['py_sub'].output()) is not None, timeout=30)
+        process = out['cpp_pub'].proc
+        process.send_signal(signal.SIGINT)
+        process.send_signal(signal.SIGINT)
+        process.wait(timeout=10)
+        assert 'terminate called' not in out['cpp_pub'].output()

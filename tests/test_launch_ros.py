@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import contextlib
 import re
+import signal
 import sys
 
 import pytest
@@ -113,3 +114,19 @@ def test_dummy_robot_activates_in_order_and_wires_every_connection(
                 assert active.index(fqns[before]) < active.index(fqns[instance.name]), active
         assert driver.state('/spare/laser_spare') == 'unconfigured'
         assert driver.state('/dummy_robot/monitor') == 'active'
+
+
+def test_ctrl_c_of_a_system_reports_no_failure(test_workspace_built, launch_env):
+    """An ordinary Ctrl-C is no failure: no instance is reported, no traceback."""
+    share = test_workspace_built.share('pubsub_system')
+    with background([sys.executable, '-c', LAUNCHER,
+                     str(share / 'launch' / 'pubsub_system.launch.py')],
+                    env=launch_env) as launched:
+        assert wait_until(lambda: len(RECEIVED.findall(launched.output())) >= 2, timeout=30), \
+            launched.output()
+        launched.proc.send_signal(signal.SIGINT)
+        launched.proc.wait(timeout=30)
+        output = launched.output()
+    assert 'instance' not in output.split('SIGINT')[-1], output
+    assert 'Traceback' not in output, output
+    assert 'finalized' not in output, output
