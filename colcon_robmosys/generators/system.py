@@ -25,6 +25,8 @@ LAUNCH_FILES = (
 FILES = (
     Row(PARAMS_FILE, 'system/params.yaml.jinja'),
     Row('{diagram}', 'system/diagram.dot.jinja'),
+    Row('bringup.json', 'system/bringup.json.jinja'),
+    Row('bringup', 'system/bringup.jinja', executable=True),
     Row('CMakeLists.txt', 'system/CMakeLists.txt.jinja'),
     Row('package.xml', 'common/package.xml.jinja', part='package_xml'),
 )

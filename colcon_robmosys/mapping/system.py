@@ -6,6 +6,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+import json
 from typing import Any
 
 from colcon_robmosys.mapping.common import (
@@ -154,6 +155,21 @@ class SystemPackage:
     depends: tuple[str, ...]
     exec_depends: tuple[str, ...]
     package_xml: PackageXml
+
+    @property
+    def bringup_description(self) -> str:
+        """Return what ``ros2 run <system> bringup`` reads: the instances, as JSON.
+
+        robmosys_runtime.bringup starts them as the launch files do and brings
+        the managed ones up in order.
+        """
+        instances = [{
+            'instance': n.instance, 'package': n.package, 'executable': n.executable,
+            'name': n.name, 'namespace': n.namespace, 'fqn': n.fqn,
+            'remappings': [list(r) for r in n.remappings], 'managed': n.activate,
+            'after': list(n.after)} for n in self.nodes]
+        return json.dumps({'package': self.package, 'params_file': PARAMS_FILE,
+                           'instances': instances}, indent=2, sort_keys=True) + '\n'
 
 
 def node_fqn(instance: Instance) -> str:

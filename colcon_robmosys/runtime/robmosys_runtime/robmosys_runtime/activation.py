@@ -16,7 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 import threading
 import time
-from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Set
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Set, Tuple
 
 from lifecycle_msgs.msg import Transition
 from lifecycle_msgs.srv import ChangeState, GetState
@@ -24,11 +24,15 @@ from rclpy.node import Node
 
 #: transition -> the state a node is in once it went through it
 GOAL_STATES = {Transition.TRANSITION_CONFIGURE: 'inactive',
-               Transition.TRANSITION_ACTIVATE: 'active'}
+               Transition.TRANSITION_ACTIVATE: 'active',
+               Transition.TRANSITION_DEACTIVATE: 'inactive',
+               Transition.TRANSITION_CLEANUP: 'unconfigured'}
 
 #: what the report says of a transition that failed
 VERBS = {Transition.TRANSITION_CONFIGURE: 'configure',
-         Transition.TRANSITION_ACTIVATE: 'activate'}
+         Transition.TRANSITION_ACTIVATE: 'activate',
+         Transition.TRANSITION_DEACTIVATE: 'deactivate',
+         Transition.TRANSITION_CLEANUP: 'clean up'}
 
 
 class _Stopped(Exception):
@@ -62,23 +66,28 @@ class SystemActivation:
 
     :param instances: instance name -> fully qualified node name
     :param after: instance name -> the instances that must be active first
-    :param timeout: seconds for each instance to appear and for each transition
+    :param timeout: seconds for each transition
+    :param start_timeout: seconds for each instance to appear (its process starts),
+        by default ``timeout``
     :param report: called with ``(level, text)``, level ``'info'`` or ``'error'``
     """
 
     def __init__(self, node: Node, instances: Mapping[str, str],
                  after: Mapping[str, Sequence[str]], *, timeout: float = 60.0,
+                 start_timeout: Optional[float] = None,
                  report: Optional[Callable[[str, str], None]] = None) -> None:
         self._node = node
         self._instances = dict(instances)
         self._after = {name: list(after.get(name, ())) for name in instances}
         self._timeout = timeout
+        self._start_timeout = timeout if start_timeout is None else start_timeout
         self._report = report or self._log
         self._states: Dict[str, str] = {}
         self._failed: Dict[str, str] = {}
         self._changed = threading.Condition()
         self._stop = threading.Event()
         self._threads: List[threading.Thread] = []
+        self._clients: Dict[Tuple[str, str], Any] = {}
 
     def _log(self, level: str, text: str) -> None:
         logger = self._node.get_logger()
@@ -105,11 +114,65 @@ class SystemActivation:
                 outcome.held_back[name] = self._blockers(name)
         return outcome
 
+    def running(self) -> bool:
+        """Tell whether instances are still being brought up."""
+        return any(thread.is_alive() for thread in self._threads)
+
     def stop(self) -> None:
         """Stop bringing instances up, quietly: the system is shutting down."""
         self._stop.set()
         with self._changed:
             self._changed.notify_all()
+
+    def instance_failed(self, name: str, why: str) -> None:
+        """Report that an instance failed outside its transitions (its process died)."""
+        with self._changed:
+            known = name in self._failed
+            self._states.pop(name, None)
+        if not known:
+            self._fail(name, why)
+
+    def bring_down(self, timeout: float = 10.0) -> List[str]:
+        """
+        Deactivate, then clean up, every instance, those that come after others first.
+
+        :returns: what was done, in order (``deactivate <name>``, ``cleanup <name>``)
+        """
+        for thread in self._threads:
+            thread.join()
+        # the bring-up is over (stopped or not): the services are used again
+        self._stop.clear()
+        done = []
+        for name in reversed(self.order()):
+            if name in self._failed:
+                continue
+            try:
+                state = self._get_state(name, timeout=timeout)
+                if state == 'active':
+                    self._change(name, Transition.TRANSITION_DEACTIVATE, timeout)
+                    done.append(f'deactivate {name}')
+                    state = 'inactive'
+                if state == 'inactive':
+                    self._change(name, Transition.TRANSITION_CLEANUP, timeout)
+                    done.append(f'cleanup {name}')
+            except (_Failed, _Stopped) as problem:
+                self._report('error', f'instance {name} could not be brought down: {problem}')
+        return done
+
+    def order(self) -> List[str]:
+        """Return the instances in an order where each comes after those it names."""
+        ordered: List[str] = []
+        todo = dict(self._after)
+        while todo:
+            ready = sorted(n for n, after in todo.items()
+                           if all(a in ordered or a not in self._after for a in after))
+            if not ready:
+                # a cycle (the model's check refuses them): keep the rest as named
+                ready = sorted(todo)
+            ordered += ready
+            for name in ready:
+                del todo[name]
+        return ordered
 
     # one instance
 
@@ -121,6 +184,8 @@ class SystemActivation:
             if state == 'inactive':
                 self._wait_for_predecessors(name)
                 state = self._change(name, Transition.TRANSITION_ACTIVATE)
+                if state == 'active':
+                    self._report('info', f'instance {name} is active')
             self._set(name, state)
             if state != 'active':
                 self._fail(name, f'is {state}, not active')
@@ -188,7 +253,8 @@ class SystemActivation:
         future.add_done_callback(lambda _: answered.set())
         end = time.monotonic() + wait
         while not answered.wait(0.1):
-            if self._stop.is_set() or not self._node.context.ok():
+            if self._stop.is_set() or not self._node.context.ok() or \
+                    self._gone(client):
                 client.remove_pending_request(future)
                 raise _Stopped()
             if time.monotonic() > end:
@@ -196,19 +262,32 @@ class SystemActivation:
                 return None
         return future.result()
 
-    def _client(self, name: str, srv_type: Any, service: str) -> Any:
-        client: Any = self._node.create_client(srv_type, f'{self._instances[name]}/{service}')
-        deadline = time.monotonic() + self._timeout
+    def _gone(self, client: Any) -> bool:
+        """Tell whether the instance of a client failed from outside (its process died)."""
+        with self._changed:
+            return any(client.srv_name.startswith(f'{self._instances[name]}/')
+                       for name in self._failed)
+
+    def _client(self, name: str, srv_type: Any, service: str,
+                timeout: Optional[float] = None) -> Any:
+        with self._changed:
+            client: Any = self._clients.get((name, service))
+            if client is None:
+                client = self._node.create_client(
+                    srv_type, f'{self._instances[name]}/{service}')
+                self._clients[(name, service)] = client
+        timeout = self._start_timeout if timeout is None else timeout
+        deadline = time.monotonic() + timeout
         while not client.wait_for_service(timeout_sec=0.2):
-            if self._stop.is_set() or not self._node.context.ok():
+            if self._stop.is_set() or not self._node.context.ok() or name in self._failed:
                 raise _Stopped()
             if time.monotonic() > deadline:
-                raise _Failed(f'did not appear within {self._timeout:g} s')
+                raise _Failed(f'did not appear within {timeout:g} s')
         return client
 
     def _get_state(self, name: str, timeout: Optional[float] = None) -> Optional[str]:
         """Return the state of an instance; None if it does not answer within timeout."""
-        client = self._client(name, GetState, 'get_state')
+        client = self._client(name, GetState, 'get_state', timeout)
         deadline = time.monotonic() + (self._timeout if timeout is None else timeout)
         while True:
             # an answer lost before the two ends matched both ways: ask again
@@ -220,18 +299,19 @@ class SystemActivation:
                     return None
                 raise _Failed(f'did not tell its state within {self._timeout:g} s')
 
-    def _change(self, name: str, transition: int) -> str:
-        client = self._client(name, ChangeState, 'change_state')
+    def _change(self, name: str, transition: int, timeout: Optional[float] = None) -> str:
+        timeout = self._timeout if timeout is None else timeout
+        client = self._client(name, ChangeState, 'change_state', timeout)
         request = ChangeState.Request()
         request.transition = Transition(id=transition)
-        answer = self._call(client, request, self._timeout)
+        answer = self._call(client, request, timeout)
         if answer is None:
             # the answer may be lost where the transition was not: the state says
             state = self._get_state(name, timeout=2.0)
             if state == GOAL_STATES[transition]:
                 return state
             now = f'it is {state}' if state else 'it does not answer'
-            raise _Failed(f'did not {VERBS[transition]} within {self._timeout:g} s ({now})')
+            raise _Failed(f'did not {VERBS[transition]} within {timeout:g} s ({now})')
         state = self._get_state(name) or 'unknown'
         if not answer.success:
             raise _Failed(f'failed to {VERBS[transition]} (it is {state})')
