@@ -98,15 +98,18 @@ def test_dummy_robot_activates_in_order_and_wires_every_connection(
              str(share / 'launch' / 'dummy_robot_bringup.launch.py')],
             env=launch_env))
 
+        managed = [i for i in system.instances if i.activate]
+
         def up() -> bool:
-            return all(w in launched.output() for w in wanted)
+            output = launched.output()
+            return all(w in output for w in wanted) and \
+                len(re.findall(r'instance \w+ is active', output)) >= len(managed)
 
         assert wait_until(up, timeout=60, period=0), launched.output()
         # each managed instance was activated once, after those it comes after: the
         # activation says so as it goes (transition events are volatile, and a test
         # that watches them misses some, as an activation that waited for them did)
         active = re.findall(r'instance (\w+) is active', launched.output())
-        managed = [i for i in system.instances if i.activate]
         assert sorted(active) == sorted(i.name for i in managed), launched.output()
         for instance in managed:
             assert driver.state(fqns[instance.name]) == 'active'

@@ -168,7 +168,8 @@ class SystemPackage:
             'name': n.name, 'namespace': n.namespace, 'fqn': n.fqn,
             'remappings': [list(r) for r in n.remappings], 'managed': n.activate,
             'after': list(n.after)} for n in self.nodes]
-        return json.dumps({'package': self.package, 'params_file': PARAMS_FILE,
+        return json.dumps({'generated_by': ' '.join(self.banner.lines),
+                           'package': self.package, 'params_file': PARAMS_FILE,
                            'instances': instances}, indent=2, sort_keys=True) + '\n'
 
 

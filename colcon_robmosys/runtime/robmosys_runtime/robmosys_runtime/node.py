@@ -110,6 +110,8 @@ class ComponentNode(LifecycleNode):
                     f'request on {name} while inactive: answered with the default response')
                 return response
             with run.lock:
+                if not self._active:
+                    return response
                 try:
                     result = function(request, response)
                 except Exception:  # noqa: B902 - an activity failure must not stop the node
@@ -223,6 +225,9 @@ class ComponentNode(LifecycleNode):
             if not self._active:
                 return
             with lock:
+                if not self._active:
+                    # deactivated while it waited: the ports may be gone
+                    return
                 try:
                     for function in functions:
                         function(*received)
@@ -276,6 +281,7 @@ class ComponentNode(LifecycleNode):
         self._active = False
         for timer in self._timers:
             timer.cancel()
+        self._wait_for_activities()
         result = super().on_deactivate(state)
         try:
             self._run_lifecycle('on_deactivate')
@@ -318,8 +324,16 @@ class ComponentNode(LifecycleNode):
     def _transition_failed(self, transition: str) -> None:
         self.get_logger().error(f'{_VERBS[transition]} failed:\n' + traceback.format_exc())
 
+    def _wait_for_activities(self, timeout: float = 5.0) -> None:
+        """Wait until no function of an activity runs: after it, none starts."""
+        for activity in self.activities.values():
+            # an activity that deactivates its own node holds its lock: go on
+            if activity.lock.acquire(timeout=timeout):
+                activity.lock.release()
+
     def _end(self, transition: str) -> TransitionCallbackReturn:
         self._active = False
+        self._wait_for_activities()
         result = TransitionCallbackReturn.SUCCESS
         try:
             self._run_lifecycle(transition)
