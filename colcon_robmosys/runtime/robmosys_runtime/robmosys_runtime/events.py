@@ -18,11 +18,12 @@ import traceback
 from typing import Any, Callable, Dict, List, Optional
 
 from action_msgs.msg import GoalStatus
-from rclpy.action import ActionClient, ActionServer, CancelResponse, GoalResponse
+from rclpy.action import CancelResponse, GoalResponse
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.node import Node
 from rclpy.qos import QoSProfile
 from rclpy.task import Future
+from robmosys_runtime.ports import ActionClient, ActionServer
 
 #: What a provided event port tests each event against: (activation, event) -> holds.
 Condition = Callable[[Any, Any], bool]

@@ -53,6 +53,25 @@ def run(node_factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
         for signum in (signal.SIGINT, signal.SIGTERM):
             signal.signal(signum, _exit_at_once)
         executor.shutdown()
+        _settle_callbacks(executor, node)
         node.destroy_node()
         rclpy.try_shutdown()
     return 0
+
+
+def _settle_callbacks(executor: MultiThreadedExecutor, node: Node) -> None:
+    """
+    Take the outcome of the callbacks that ended after the executor stopped.
+
+    SIGINT or SIGTERM shut the context down, which destroys the node under
+    the callbacks still running (a transition, say): they fail with it, and
+    rclpy would print each failure when it collects the task ("exception was
+    never retrieved"). Those failures are the shutdown; any other is logged.
+    rclpy keeps the tasks of a MultiThreadedExecutor in ``_futures`` (7.1, 9.1).
+    """
+    for task in list(getattr(executor, '_futures', ())):
+        if not task.done():
+            continue
+        failure = task.exception()
+        if failure is not None and rclpy.ok():
+            node.get_logger().error(f'a callback failed: {failure!r}')

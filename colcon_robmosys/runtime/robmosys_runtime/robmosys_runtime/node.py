@@ -17,13 +17,13 @@ import traceback
 from typing import (
     Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, TypeVar)
 
-from rclpy.action import ActionServer, CancelResponse, GoalResponse
+from rclpy.action import CancelResponse, GoalResponse
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.lifecycle import LifecycleNode, LifecycleState, TransitionCallbackReturn
 from rclpy.qos import QoSProfile
 from rclpy.timer import Timer
 from robmosys_runtime.events import EventClient, EventServer
-from robmosys_runtime.ports import ActionClientPort, QueryClient
+from robmosys_runtime.ports import ActionClientPort, ActionServer, QueryClient
 
 Function = Callable[..., Any]
 Entity = TypeVar('Entity')

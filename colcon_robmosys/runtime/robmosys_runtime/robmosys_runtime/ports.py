@@ -6,10 +6,12 @@ from __future__ import annotations
 
 import threading
 import time
-from typing import Any, Callable, Optional
+from typing import Any, Callable, Optional, TypeVar
 
-from rclpy.action import ActionClient
+from rclpy.action import ActionClient as _RclpyActionClient
+from rclpy.action import ActionServer as _RclpyActionServer
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
+from rclpy.exceptions import InvalidHandle
 from rclpy.node import Node
 from rclpy.task import Future
 
@@ -75,6 +77,74 @@ class QueryClient:
     def destroy(self) -> None:
         """Release the client."""
         self._node.destroy_client(self.client)
+
+
+Result = TypeVar('Result')
+
+
+def _unless_destroyed(handle: Any, call: Callable[[], Result], otherwise: Result) -> Result:
+    """
+    Return call() on an action entity in a wait set, or otherwise once it is destroyed.
+
+    rclpy destroys an action client or server before it takes it out of its
+    node's waitables, and an executor thread that listed the waitables in
+    between adds the destroyed entity to its wait set and asks whether it is
+    ready anyway ("action client pointer is invalid", rclpy 9.1 and 7.1).
+    Ports are destroyed on cleanup while the executor spins. Such an entity
+    was not counted in the wait set either, so leaving it out is right.
+    """
+    try:
+        with handle:
+            return call()
+    except InvalidHandle:
+        return otherwise
+
+
+class ActionClient(_RclpyActionClient):
+    """
+    rclpy's action client, safe to create and destroy while its node spins.
+
+    rclpy (9.1 and 7.1 at least) adds an action client to its node before it
+    creates the lock that ``get_num_entities`` takes (ros2/rclpy#1589): an
+    executor thread that builds its wait set in that moment raises
+    AttributeError, and the process ends. Ports are created in on_configure,
+    on an executor thread, so the lock is made first here and kept.
+    """
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        self.__dict__['_lock'] = threading.Lock()
+        super().__init__(*args, **kwargs)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if name == '_lock' and '_lock' in self.__dict__:
+            # rclpy's own lock comes once the client is in the wait sets;
+            # another thread may hold the first one already
+            return
+        super().__setattr__(name, value)
+
+    def add_to_wait_set(self, wait_set: Any) -> None:
+        """Add the client to a wait set, unless it is being destroyed."""
+        _unless_destroyed(self._client_handle,
+                          lambda: super(ActionClient, self).add_to_wait_set(wait_set), None)
+
+    def is_ready(self, wait_set: Any) -> bool:
+        """Return whether the client has something to take; never once destroyed."""
+        return _unless_destroyed(self._client_handle,
+                                 lambda: super(ActionClient, self).is_ready(wait_set), False)
+
+
+class ActionServer(_RclpyActionServer):
+    """rclpy's action server, safe to destroy while its node spins."""
+
+    def add_to_wait_set(self, wait_set: Any) -> None:
+        """Add the server to a wait set, unless it is being destroyed."""
+        _unless_destroyed(self._handle,
+                          lambda: super(ActionServer, self).add_to_wait_set(wait_set), None)
+
+    def is_ready(self, wait_set: Any) -> bool:
+        """Return whether the server has something to take; never once destroyed."""
+        return _unless_destroyed(self._handle,
+                                 lambda: super(ActionServer, self).is_ready(wait_set), False)
 
 
 class ActionClientPort:

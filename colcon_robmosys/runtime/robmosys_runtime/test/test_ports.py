@@ -6,9 +6,11 @@ import threading
 
 from conftest import wait_until
 import pytest
-from rclpy.action import ActionServer
+import rclpy
+from rclpy.executors import MultiThreadedExecutor
 from rclpy.node import Node
 from robmosys_runtime import ActionClientPort, QueryClient
+from robmosys_runtime.ports import ActionClient, ActionServer
 from test_msgs.action import Fibonacci
 from test_msgs.srv import BasicTypes
 
@@ -86,3 +88,44 @@ def test_blocking_calls_from_a_callback_of_the_executor(spinning):
     timer = client_node.create_timer(0.05, tick)
     assert done.wait(10)
     assert got == [1001]
+
+
+@pytest.mark.parametrize('make', ['ActionClient', 'ActionClientPort', 'ActionServer'])
+def test_action_entities_made_and_destroyed_while_the_executor_spins_their_node(make):
+    # ports are made in on_configure, on an executor thread, while other
+    # threads of the executor build their wait sets from the node's waitables
+    # (ros2/rclpy#1589: rclpy's client joins them before it has its lock), and
+    # destroyed on cleanup the same way (rclpy destroys before it removes)
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    executor = MultiThreadedExecutor(num_threads=4, context=context)
+    node = Node('maker', context=context)
+    # a timer keeps the executor threads rebuilding their wait sets
+    node.create_timer(0.0001, lambda: None)
+    executor.add_node(node)
+    failures = []
+
+    def spin():
+        try:
+            executor.spin()
+        except Exception as failure:  # noqa: B902 - what the test looks for
+            if context.ok():
+                failures.append(failure)
+    thread = threading.Thread(target=spin, daemon=True)
+    thread.start()
+    try:
+        for index in range(150):
+            if make == 'ActionClient':
+                client = ActionClient(node, Fibonacci, f'fibonacci_{index}')
+                client.destroy()
+            elif make == 'ActionServer':
+                ActionServer(node, Fibonacci, f'fibonacci_{index}', lambda goal: None).destroy()
+            else:
+                ActionClientPort(node, Fibonacci, f'fibonacci_{index}').destroy()
+            assert not failures, failures
+    finally:
+        executor.shutdown()
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
+        thread.join(10)
+    assert not failures, failures
