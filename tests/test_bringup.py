@@ -11,6 +11,7 @@ and exits 0. Its description (``bringup.json``) is the system model's.
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 import re
 import signal
@@ -18,19 +19,20 @@ import sys
 
 import pytest
 
-from colcon_robmosys.devtools.ros_env import background, free_domain_id
-from colcon_robmosys.devtools.system import wait_until
-from conftest import BuiltWorkspace, requires_ros
+from colcon_robmosys.devtools.ros_env import background, free_domain_id, run as run_command
+from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
+from conftest import BuiltWorkspace, colcon, requires_ros
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
 SYSTEM = 'examples_system'
 
 
-def _bringup(built: BuiltWorkspace, *args: str):
+def _bringup(built: BuiltWorkspace, *args: str, domain_id: int | None = None):
     executable = built.install / SYSTEM / 'lib' / SYSTEM / 'bringup'
     return background([sys.executable, str(executable), *args],
-                      env=built.env(free_domain_id()), stop_timeout=30)
+                      env=built.env(free_domain_id() if domain_id is None else domain_id),
+                      stop_timeout=30)
 
 
 def _description(built: BuiltWorkspace) -> dict:
@@ -113,3 +115,193 @@ def test_an_instance_that_never_answers_is_reported_within_its_timeout(
         'activated because of it: level_watcher' in output, output
     assert 'bringup: 6 of 8 managed instances active' in output, output
     assert 'Traceback' not in output, output
+
+
+def _trigger(driver: LifecycleDriver, service: str, timeout: float = 120.0):
+    from std_srvs.srv import Trigger
+    # bring_up and bring_down take as long as the transitions: never asked twice
+    return driver.call(Trigger, f'/{SYSTEM}_bringup/{service}', Trigger.Request(),
+                       timeout=timeout, attempt=timeout)
+
+
+def _states(report: str) -> dict[str, str]:
+    return dict(re.findall(r'^(\w+): (\w+)', report, re.MULTILINE))
+
+
+def _all_up(bringup) -> bool:
+    return 'bringup: 8 of 8 managed instances active' in bringup.output()
+
+
+def test_operators_report_bring_down_and_bring_up_the_system(test_workspace_built):
+    domain_id = free_domain_id()
+    with _bringup(test_workspace_built, domain_id=domain_id) as bringup, \
+            LifecycleDriver(domain_id) as driver:
+        assert wait_until(lambda: _all_up(bringup), timeout=90), bringup.output()
+        report = _trigger(driver, 'report')
+        assert report.success, report.message
+        assert set(_states(report.message).values()) == {'active'}, report.message
+        assert len(_states(report.message)) == 8, report.message
+
+        down = _trigger(driver, 'bring_down')
+        assert down.success, down.message
+        order = re.findall(r'deactivate (\w+)', down.message)
+        assert order.index('add_client') < order.index('add_server'), down.message
+        report = _trigger(driver, 'report')
+        assert not report.success
+        assert set(_states(report.message).values()) == {'unconfigured'}, report.message
+        assert driver.state('/examples/add_server') == 'unconfigured'
+
+        up = _trigger(driver, 'bring_up')
+        assert up.success, up.message
+        assert 'bringup: 8 of 8 managed instances active' in up.message, up.message
+        assert driver.state('/examples/add_server') == 'active'
+        assert _trigger(driver, 'report').success
+        # data flows again after the new bring-up
+        mark = len(bringup.output())
+        assert wait_until(lambda: re.search(r'received hi there \d+',
+                                            bringup.output()[mark:]) is not None, 30)
+        bringup.proc.send_signal(signal.SIGINT)
+        assert bringup.proc.wait(timeout=60) == 0, bringup.output()
+
+
+def test_the_state_of_every_instance_is_on_diagnostics(test_workspace_built):
+    from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+    domain_id = free_domain_id()
+    with _bringup(test_workspace_built, '--diagnostics-period', '0.2',
+                  domain_id=domain_id) as bringup, LifecycleDriver(domain_id) as driver:
+        arrays: list = []
+        driver.node.create_subscription(DiagnosticArray, '/diagnostics', arrays.append, 10)
+        assert wait_until(lambda: _all_up(bringup), timeout=90), bringup.output()
+
+        def all_ok() -> bool:
+            driver.spin(0.1)
+            return bool(arrays) and len(arrays[-1].status) == 8 and all(
+                s.level == DiagnosticStatus.OK for s in arrays[-1].status)
+        assert wait_until(all_ok, timeout=20), arrays[-1:] or bringup.output()
+        status = {s.name: s for s in arrays[-1].status}
+        sender = status[f'{SYSTEM}: sender']
+        assert sender.hardware_id == '/examples/sender'
+        assert {v.key: v.value for v in sender.values}['state'] == 'active'
+
+
+def _pid_of(node_name: str, description: Path) -> int:
+    """Return the pid of the process bringup started for an instance."""
+    for entry in Path('/proc').iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            argv = (entry / 'cmdline').read_bytes().split(b'\0')
+        except OSError:
+            continue
+        if f'__node:={node_name}'.encode() in argv and \
+                any(str(description.parent).encode() in a or b'params.yaml' in a
+                    for a in argv):
+            return int(entry.name)
+    raise AssertionError(f'no process of {node_name}')
+
+
+def test_an_instance_marked_respawn_comes_back_to_the_state_of_the_system(
+        test_workspace_built, tmp_path):
+    description = _description(test_workspace_built)
+    for instance in description['instances']:
+        if instance['instance'] == 'add_server':
+            instance['respawn'] = True
+    path = tmp_path / 'bringup.json'
+    path.write_text(json.dumps(description))
+    domain_id = free_domain_id()
+    with _bringup(test_workspace_built, '--description', str(path), '--respawn-delay', '0.5',
+                  domain_id=domain_id) as bringup, LifecycleDriver(domain_id) as driver:
+        assert wait_until(lambda: _all_up(bringup), timeout=90), bringup.output()
+        first = _pid_of('add_server', path)
+        os.kill(first, signal.SIGKILL)
+        assert wait_until(lambda: 'instance add_server exited with code -9: starting it '
+                          'again (respawn 1)' in bringup.output(), 20), bringup.output()
+        # started again, and brought back to active: the system is whole again
+        assert wait_until(lambda: bringup.output().count('instance add_server is active') == 2,
+                          60), bringup.output()
+        assert _pid_of('add_server', path) != first
+        assert driver.state('/examples/add_server') == 'active'
+        assert wait_until(lambda: _trigger(driver, 'report').success, 30), \
+            _trigger(driver, 'report').message
+
+
+def test_the_heartbeat_notices_an_instance_that_stops_answering_or_leaves_active(
+        test_workspace_built, tmp_path):
+    domain_id = free_domain_id()
+    description = test_workspace_built.share(SYSTEM) / 'bringup.json'
+    with _bringup(test_workspace_built, '--heartbeat', '0.5',
+                  domain_id=domain_id) as bringup, LifecycleDriver(domain_id) as driver:
+        assert wait_until(lambda: _all_up(bringup), timeout=90), bringup.output()
+        # someone deactivates an instance behind the manager's back
+        assert driver.transition('/examples/receiver', 'deactivate')
+        assert wait_until(lambda: 'instance receiver is inactive, not active (heartbeat)'
+                          in bringup.output(), 20), bringup.output()
+        # a process that hangs (stopped) answers nothing
+        pid = _pid_of('level_watcher', description)
+        os.kill(pid, signal.SIGSTOP)
+        try:
+            assert wait_until(lambda: 'instance level_watcher does not answer (heartbeat)'
+                              in bringup.output(), 30), bringup.output()
+            report = _trigger(driver, 'report')
+            assert not report.success
+            states = _states(report.message)
+            assert states['receiver'] == 'failed' and states['level_watcher'] == 'unknown', \
+                report.message
+        finally:
+            os.kill(pid, signal.SIGCONT)
+        assert wait_until(lambda: 'instance level_watcher answers again (heartbeat)'
+                          in bringup.output(), 30), bringup.output()
+
+
+def test_the_smoke_test_of_every_example_system_passes_under_colcon_test(
+        test_workspace_built):
+    systems = [p for p in ('examples_system', 'pubsub_system', 'dummy_robot_bringup')
+               if (test_workspace_built.install / p).is_dir()]
+    assert 'examples_system' in systems
+    result = colcon(['test', '--packages-select', *systems,
+                     '--event-handlers', 'console_direct+'], cwd=test_workspace_built.root)
+    assert result.returncode == 0, result.stdout + result.stderr
+    for system in systems:
+        results = colcon(['test-result', '--test-result-base', f'build/{system}', '--all',
+                          '--verbose'], cwd=test_workspace_built.root, timeout=120)
+        assert results.returncode == 0, results.stdout + results.stderr
+        assert f'build/{system}/test_results/{system}/smoke_test.xunit.xml' in \
+            results.stdout, results.stdout
+        assert re.search(r'Summary: \d+ tests?, 0 errors, 0 failures, 0 skipped',
+                         results.stdout), results.stdout
+
+
+def test_the_smoke_test_fails_when_a_connection_carries_nothing(test_workspace_built,
+                                                                tmp_path):
+    description = _description(test_workspace_built)
+    # a connection of the model whose publisher never publishes
+    description['connections'].append({
+        'name': '/examples/nobody/speaks', 'entity': 'publisher', 'type': 'std_msgs/msg/String',
+        'from': 'nobody.speaks', 'to': 'receiver.listens'})
+    path = tmp_path / 'bringup.json'
+    path.write_text(json.dumps(description))
+    problems = _smoke(test_workspace_built, description_file=str(path),
+                      timeout=5.0)
+    assert problems[0] == 'no message on nobody.speaks -> receiver.listens ' \
+        '(/examples/nobody/speaks, std_msgs/msg/String) within 5 s', problems
+    assert len(problems) == 2 and problems[1].startswith('what the system printed:')
+
+
+def test_the_smoke_test_fails_when_the_system_does_not_come_up(test_workspace_built,
+                                                               tmp_path):
+    path = _broken_description(test_workspace_built, tmp_path, add_server=[
+        sys.executable, '-c', 'import sys; sys.exit(3)'])
+    problems = _smoke(test_workspace_built, description_file=str(path),
+                      bring_up_timeout=60.0, bringup_args=['--timeout', '10'])
+    assert problems[0] == 'the system did not come up: bringup exited with code 1', problems
+    assert 'instance add_server exited with code 3' in problems[-1], problems
+
+
+def _smoke(built: BuiltWorkspace, **kwargs) -> list:
+    """Run robmosys_runtime.smoke in a process of its own, in the workspace's environment."""
+    script = ('import json, sys; from robmosys_runtime import smoke; '
+              f'print(json.dumps(smoke.run({SYSTEM!r}, **json.loads(sys.argv[1]))))')
+    result = run_command([sys.executable, '-c', script, json.dumps(kwargs)],
+                         env=built.env(free_domain_id()), timeout=300)
+    assert result.returncode == 0, result.stdout + result.stderr
+    return json.loads(result.stdout.splitlines()[-1])

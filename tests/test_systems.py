@@ -11,6 +11,7 @@ the generator.
 from __future__ import annotations
 
 import ast
+import json
 from pathlib import Path
 import re
 import shutil
@@ -306,3 +307,34 @@ def test_warnings_are_told_by_the_verb_and_the_build_without_failing(
     assert (share / 'doc' / 'dummy_robot_bringup.dot').is_file()
     assert (share / 'doc' / 'dummy_robot_bringup.svg').is_file() is \
         (shutil.which('dot') is not None)
+
+
+# what the system manager reads ---------------------------------------------
+
+def test_respawn_and_timeouts_of_the_model_reach_the_manager_and_the_launch_file(tmp_path):
+    shutil.copytree(TEST_WORKSPACE / 'src' / 'examples_system', tmp_path / 'src' / 'system')
+    for name in ('send_example', 'example_msgs'):
+        shutil.copytree(TEST_WORKSPACE / 'src' / name, tmp_path / 'src' / name)
+    model = tmp_path / 'src' / 'system' / 'robmosys.yaml'
+    raw = yaml.safe_load(model.read_text())
+    system = raw['systems'][0]
+    system['instances'] = {
+        'sender': {'component': 'sender', 'respawn': True},
+        'receiver': {'component': 'receiver', 'timeout': 2.5}}
+    system['connections'] = [c for c in system['connections'] if c['from'] == 'receiver.sText']
+    model.write_text(yaml.safe_dump(raw))
+    workspace = _load(tmp_path / 'src')
+    out = tmp_path / 'out'
+    generate_package(plan_package(workspace, 'examples_system'), out)
+    description = json.loads((out / 'bringup.json').read_text())
+    instances = {i['instance']: i for i in description['instances']}
+    assert instances['sender']['respawn'] is True and instances['sender']['timeout'] is None
+    assert instances['receiver']['respawn'] is False and instances['receiver']['timeout'] == 2.5
+    # the smoke test's connections: the provided end names it
+    assert description['connections'] == [{
+        'name': '/receiver/sText', 'entity': 'subscription',
+        'type': 'example_msgs/msg/Text', 'from': 'receiver.sText', 'to': 'sender.sText'}]
+    nodes = {n.name: n for n in read_launch_file(
+        out / 'launch' / 'examples_system.nodes.launch.py', out)}
+    assert nodes['sender'].extra == {**LAUNCH_EXTRA, 'respawn': True}
+    assert nodes['receiver'].extra == LAUNCH_EXTRA

@@ -213,6 +213,11 @@ class LifecycleDriver:
             if time.monotonic() >= deadline:
                 raise TimeoutError(f'service {name} did not answer within {timeout} s')
 
+    def call(self, srv_type: type, name: str, request: Any, timeout: float = 20.0,
+             attempt: float = 5.0) -> Any:
+        """Call a service; a request that can be repeated is sent again every ``attempt`` s."""
+        return self._call(srv_type, name, request, timeout, attempt)
+
     def state(self, fqn: str, timeout: float = 20.0) -> str:
         """Return the label of the node's current lifecycle state."""
         from lifecycle_msgs.srv import GetState

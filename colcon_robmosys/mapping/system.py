@@ -11,13 +11,12 @@ from typing import Any
 
 from colcon_robmosys.mapping.common import (
     Banner, banner_of, package_xml, PackageXml, unique)
+from colcon_robmosys.mapping.connections import (
+    connection_topics, node_fqn, provided_end, system_connections, SystemConnection)
 from colcon_robmosys.mapping.cpp import RUNTIME_PACKAGE
-from colcon_robmosys.mapping.names import connection_name, node_name
 from colcon_robmosys.mapping.portkinds import port_kind
 from colcon_robmosys.model.parameters import freeze_parameter_value
-from colcon_robmosys.model.types import (
-    Component, Connection, Instance, PortRef, Role, System,
-    Workspace)
+from colcon_robmosys.model.types import Component, Instance, System, Workspace
 
 PARAMS_FILE = 'cfg/params.yaml'
 
@@ -38,6 +37,10 @@ class SystemNode:
     fqn: str
     #: the instances of the same launch file it waits for
     activate_after: tuple[str, ...] = ()
+    #: started again when its process ends
+    respawn: bool = False
+    #: seconds for each lifecycle transition; None: the bring-up's default
+    timeout: float | None = None
 
 
 @dataclass(frozen=True)
@@ -155,6 +158,7 @@ class SystemPackage:
     depends: tuple[str, ...]
     exec_depends: tuple[str, ...]
     package_xml: PackageXml
+    connections: tuple[SystemConnection, ...] = ()
 
     @property
     def bringup_description(self) -> str:
@@ -167,47 +171,14 @@ class SystemPackage:
             'instance': n.instance, 'package': n.package, 'executable': n.executable,
             'name': n.name, 'namespace': n.namespace, 'fqn': n.fqn,
             'remappings': [list(r) for r in n.remappings], 'managed': n.activate,
-            'after': list(n.after)} for n in self.nodes]
+            'after': list(n.after), 'respawn': n.respawn, 'timeout': n.timeout}
+            for n in self.nodes]
+        connections = [{'name': c.name, 'entity': c.entity, 'type': c.type,
+                        'from': c.source, 'to': c.target} for c in self.connections]
         return json.dumps({'generated_by': ' '.join(self.banner.lines),
                            'package': self.package, 'params_file': PARAMS_FILE,
-                           'instances': instances}, indent=2, sort_keys=True) + '\n'
-
-
-def node_fqn(instance: Instance) -> str:
-    """Return the fully qualified node name of an instance."""
-    return node_name(instance.namespace, instance.name)
-
-
-def provided_end(connection: Connection, components: dict[str, Component]
-                 ) -> PortRef:
-    """Return the end of a valid connection whose port is provided."""
-    for end in (connection.source, connection.target):
-        port = components[end.instance].port(end.port)
-        assert port is not None
-        if port.role is Role.PROVIDED:
-            return end
-    raise AssertionError(f'no provided end in {connection}')
-
-
-def connection_topics(system: System, components: dict[str, Component]
-                      ) -> dict[tuple[str, str], str]:
-    """Return the ROS 2 name every connected port is remapped to.
-
-    The provided end names a connection (see
-    :func:`colcon_robmosys.model.names.connection_name`): the publisher of
-    a push port, the server of a send, query, action or event port. The
-    validation made sure a port takes one name only.
-    """
-    topics: dict[tuple[str, str], str] = {}
-    for connection in system.connections:
-        provided = provided_end(connection, components)
-        instance = system.instance(provided.instance)
-        assert instance is not None
-        topic = connection_name(instance.namespace, provided.instance,
-                                provided.port, connection.topic)
-        for end in (connection.source, connection.target):
-            topics[(end.instance, end.port)] = topic
-    return topics
+                           'instances': instances, 'connections': connections},
+                          indent=2, sort_keys=True) + '\n'
 
 
 def activation_order(system: System) -> list[Instance]:
@@ -234,7 +205,7 @@ def _node(instance: Instance, component: Component,
                          for p in component.ports
                          if (instance.name, p.name) in topics),
         activate=instance.activate, after=instance.after,
-        fqn=node_fqn(instance))
+        fqn=node_fqn(instance), respawn=instance.respawn, timeout=instance.timeout)
 
 
 def _launch_files(system: System, nodes: tuple[SystemNode, ...],
@@ -322,6 +293,8 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
         diagram=f'doc/{system.package}.dot',
         instances=_instances(system, components),
         edges=_edges(system, components, topics),
+        connections=system_connections(system, components, topics),
         depends=packages, exec_depends=exec_depends,
         package_xml=package_xml(banner, system.info, buildtool=['ament_cmake'],
-                                exec_=exec_depends))
+                                exec_=exec_depends,
+                                test=('ament_cmake_pytest', 'ament_cmake_ros')))

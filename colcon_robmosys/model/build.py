@@ -61,7 +61,8 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
                 body.get('activate', True), tuple(body.get('after', ())),
                 body.get('description', ''), self.at(ipath, key=True),
                 tuple(self.at(ipath + ('parameters', n), key=True)
-                      for n, _ in parameters)))
+                      for n, _ in parameters),
+                bool(body.get('respawn', False)), body.get('timeout')))
         connections = []
         for index, body in enumerate(raw.get('connections', [])):
             cpath = path + ('connections', index)

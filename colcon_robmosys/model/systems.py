@@ -26,6 +26,10 @@ class Instance:
     location: Location
     #: where the key of each entry of ``parameters`` stands
     parameter_locations: tuple[Location, ...] = ()
+    #: started again when its process ends
+    respawn: bool = False
+    #: seconds for each lifecycle transition; None: the bring-up's default
+    timeout: float | None = None
 
 
 @dataclass(frozen=True)

@@ -16,11 +16,12 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 import threading
 import time
-from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Set, Tuple
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 
 from lifecycle_msgs.msg import Transition
 from lifecycle_msgs.srv import ChangeState, GetState
 from rclpy.node import Node
+from robmosys_runtime import levels
 
 #: transition -> the state a node is in once it went through it
 GOAL_STATES = {Transition.TRANSITION_CONFIGURE: 'inactive',
@@ -70,16 +71,20 @@ class SystemActivation:
     :param start_timeout: seconds for each instance to appear (its process starts),
         by default ``timeout``
     :param report: called with ``(level, text)``, level ``'info'`` or ``'error'``
+    :param timeouts: instance name -> seconds for each of its transitions, where
+        the model sets it (``timeout`` otherwise)
     """
 
     def __init__(self, node: Node, instances: Mapping[str, str],
                  after: Mapping[str, Sequence[str]], *, timeout: float = 60.0,
                  start_timeout: Optional[float] = None,
-                 report: Optional[Callable[[str, str], None]] = None) -> None:
+                 report: Optional[Callable[[str, str], None]] = None,
+                 timeouts: Optional[Mapping[str, float]] = None) -> None:
         self._node = node
         self._instances = dict(instances)
         self._after = {name: list(after.get(name, ())) for name in instances}
         self._timeout = timeout
+        self._timeouts = dict(timeouts or {})
         self._start_timeout = timeout if start_timeout is None else start_timeout
         self._report = report or self._log
         self._states: Dict[str, str] = {}
@@ -93,13 +98,50 @@ class SystemActivation:
         logger = self._node.get_logger()
         (logger.error if level == 'error' else logger.info)(text)
 
-    def start(self) -> None:
-        """Start bringing every instance up, each in a thread of its own."""
-        for name in self._instances:
+    def start(self, names: Optional[Sequence[str]] = None) -> None:
+        """
+        Start bringing instances up (every one by default), each in a thread of its own.
+
+        An instance brought up again (its process was started again, or the
+        system is brought up after a bring-down) loses its failure, and so
+        does what it held back.
+        """
+        self._stop.clear()
+        names = list(self._instances) if names is None else list(names)
+        with self._changed:
+            self._threads = [t for t in self._threads if t.is_alive()]
+            for name in names:
+                self._failed.pop(name, None)
+                self._states.pop(name, None)
+        for name in names:
             thread = threading.Thread(target=self._bring_up, args=(name,), daemon=True,
                                       name=f'activate {name}')
             thread.start()
             self._threads.append(thread)
+
+    def restart(self, name: str) -> None:
+        """Bring an instance up again, with what its failure held back."""
+        waiting = [n for n in self._waiting_for(name) if self.states().get(n) != 'active']
+        self.start([name] + waiting)
+
+    def states(self) -> Dict[str, str]:
+        """Return the last known state of each instance brought up (``failed`` if it failed)."""
+        with self._changed:
+            states = dict(self._states)
+            states.update(dict.fromkeys(self._failed, 'failed'))
+            return states
+
+    def failures(self) -> Dict[str, str]:
+        """Return the failed instances and why they failed."""
+        with self._changed:
+            return dict(self._failed)
+
+    def probe(self, name: str, timeout: float) -> Optional[str]:
+        """Return the state an instance tells within timeout, or None (a heartbeat)."""
+        try:
+            return self._get_state(name, timeout=timeout)
+        except (_Failed, _Stopped):
+            return None
 
     def wait(self, timeout: Optional[float] = None) -> Outcome:
         """Wait until every instance is active or cannot be; return the outcome."""
@@ -147,32 +189,24 @@ class SystemActivation:
             if name in self._failed:
                 continue
             try:
-                state = self._get_state(name, timeout=timeout)
+                wait = min(timeout, self._timeouts.get(name, timeout))
+                state = self._get_state(name, timeout=wait)
                 if state == 'active':
-                    self._change(name, Transition.TRANSITION_DEACTIVATE, timeout)
+                    self._change(name, Transition.TRANSITION_DEACTIVATE, wait)
                     done.append(f'deactivate {name}')
                     state = 'inactive'
                 if state == 'inactive':
-                    self._change(name, Transition.TRANSITION_CLEANUP, timeout)
+                    self._change(name, Transition.TRANSITION_CLEANUP, wait)
                     done.append(f'cleanup {name}')
+                    state = 'unconfigured'
+                self._set(name, state or 'unknown')
             except (_Failed, _Stopped) as problem:
                 self._report('error', f'instance {name} could not be brought down: {problem}')
         return done
 
     def order(self) -> List[str]:
         """Return the instances in an order where each comes after those it names."""
-        ordered: List[str] = []
-        todo = dict(self._after)
-        while todo:
-            ready = sorted(n for n, after in todo.items()
-                           if all(a in ordered or a not in self._after for a in after))
-            if not ready:
-                # a cycle (the model's check refuses them): keep the rest as named
-                ready = sorted(todo)
-            ordered += ready
-            for name in ready:
-                del todo[name]
-        return ordered
+        return levels.order(self._after)
 
     # one instance
 
@@ -223,26 +257,11 @@ class SystemActivation:
 
     def _blockers(self, name: str) -> List[str]:
         """Return the failed instances that name waits for, directly or not."""
-        seen: Set[str] = set()
-        todo = list(self._after[name])
-        while todo:
-            other = todo.pop()
-            if other not in seen:
-                seen.add(other)
-                todo += self._after.get(other, [])
-        return sorted(seen & set(self._failed))
+        return sorted(levels.predecessors(self._after, name) & set(self._failed))
 
     def _waiting_for(self, name: str) -> List[str]:
         """Return the instances that come after name, directly or not."""
-        waiting: Set[str] = set()
-        grew = True
-        while grew:
-            grew = False
-            for candidate, after in self._after.items():
-                if candidate not in waiting and (name in after or waiting & set(after)):
-                    waiting.add(candidate)
-                    grew = True
-        return sorted(waiting)
+        return levels.successors(self._after, name)
 
     # services
 
@@ -285,22 +304,27 @@ class SystemActivation:
                 raise _Failed(f'did not appear within {timeout:g} s')
         return client
 
+    def _timeout_of(self, name: str) -> float:
+        return self._timeouts.get(name, self._timeout)
+
     def _get_state(self, name: str, timeout: Optional[float] = None) -> Optional[str]:
         """Return the state of an instance; None if it does not answer within timeout."""
         client = self._client(name, GetState, 'get_state', timeout)
-        deadline = time.monotonic() + (self._timeout if timeout is None else timeout)
+        own = self._timeout_of(name)
+        deadline = time.monotonic() + (own if timeout is None else timeout)
         while True:
             # an answer lost before the two ends matched both ways: ask again
-            answer = self._call(client, GetState.Request(), 2.0)
+            answer = self._call(client, GetState.Request(),
+                                2.0 if timeout is None else min(2.0, timeout))
             if answer is not None:
                 return str(answer.current_state.label)
             if time.monotonic() > deadline:
                 if timeout is not None:
                     return None
-                raise _Failed(f'did not tell its state within {self._timeout:g} s')
+                raise _Failed(f'did not tell its state within {own:g} s')
 
     def _change(self, name: str, transition: int, timeout: Optional[float] = None) -> str:
-        timeout = self._timeout if timeout is None else timeout
+        timeout = self._timeout_of(name) if timeout is None else timeout
         client = self._client(name, ChangeState, 'change_state', timeout)
         request = ChangeState.Request()
         request.transition = Transition(id=transition)

@@ -1,0 +1,301 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""
+The system manager: the processes of a system, their bring-up, what operators see.
+
+:class:`Manager` starts the instances a system package describes
+(``bringup.json``), brings the managed ones up with
+:class:`~robmosys_runtime.activation.SystemActivation`, and offers operators
+services and ``/diagnostics``; ``ros2 run <system> bringup``
+(:mod:`robmosys_runtime.bringup`) runs it in the foreground.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+from typing import Any, Dict, List, Sequence
+
+from ament_index_python.packages import get_package_prefix
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
+from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
+from rclpy.node import Node
+from robmosys_runtime.activation import Outcome, SystemActivation
+from std_srvs.srv import Trigger
+
+#: seconds each process has to end after SIGINT, before SIGKILL
+STOP_TIMEOUT = 10.0
+
+
+def command(instance: Dict[str, Any], params_file: str) -> List[str]:
+    """Return the command line of an instance, as launch_ros would build it."""
+    executable = instance.get('command') or [os.path.join(
+        get_package_prefix(instance['package']), 'lib', instance['package'],
+        instance['executable'])]
+    args = list(executable) + ['--ros-args', '-r', f"__node:={instance['name']}"]
+    if instance['namespace']:
+        args += ['-r', f"__ns:={instance['namespace']}"]
+    args += ['--params-file', params_file]
+    for source, target in instance['remappings']:
+        args += ['-r', f'{source}:={target}']
+    return args
+
+
+class Processes:
+    """The processes of the instances, watched: one that ends is reported."""
+
+    def __init__(self, on_exit: Any) -> None:
+        self._processes: Dict[str, subprocess.Popen[bytes]] = {}
+        self._on_exit = on_exit
+        self._stopping = threading.Event()
+        self._watch = threading.Thread(target=self._watch_loop, daemon=True)
+
+    def start(self, name: str, args: Sequence[str]) -> None:
+        """Start an instance in a session of its own: a Ctrl-C reaches only bringup."""
+        self._processes[name] = subprocess.Popen(
+            list(args), stdin=subprocess.DEVNULL, start_new_session=True)
+
+    def watch(self) -> None:
+        """Start watching the processes."""
+        self._watch.start()
+
+    def ended(self, name: str) -> bool:
+        """Tell whether the process of an instance has ended."""
+        return self._processes[name].poll() is not None
+
+    def _watch_loop(self) -> None:
+        reported: Dict[str, subprocess.Popen[bytes]] = {}
+        while not self._stopping.wait(0.1):
+            for name, process in list(self._processes.items()):
+                code = process.poll()
+                # a process started again is watched again
+                if code is not None and reported.get(name) is not process:
+                    reported[name] = process
+                    self._on_exit(name, code)
+
+    def stop(self, timeout: float = STOP_TIMEOUT) -> None:
+        """Ask every process to end (SIGINT), then kill what is left after timeout."""
+        self._stopping.set()
+        for process in self._processes.values():
+            if process.poll() is None:
+                try:
+                    os.killpg(process.pid, signal.SIGINT)
+                except ProcessLookupError:
+                    pass
+        deadline = time.monotonic() + timeout
+        for process in self._processes.values():
+            try:
+                process.wait(max(0.0, deadline - time.monotonic()))
+            except subprocess.TimeoutExpired:
+                self.kill()
+
+    def kill(self) -> None:
+        """End every process at once."""
+        self._stopping.set()
+        for process in self._processes.values():
+            try:
+                os.killpg(process.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+
+
+def report(outcome: Outcome, total: int) -> str:
+    """Return the final report of a bring-up, one line per problem."""
+    lines = [f'bringup: {len(outcome.active)} of {total} managed instances active']
+    lines += [f'bringup: {name} failed: {why}' for name, why in sorted(outcome.failed.items())]
+    lines += [f"bringup: {name} held back by {', '.join(by)}"
+              for name, by in sorted(outcome.held_back.items())]
+    return '\n'.join(lines)
+
+
+#: diagnostic level of each state an instance is in
+_LEVELS = {'active': DiagnosticStatus.OK, 'failed': DiagnosticStatus.ERROR,
+           'unknown': DiagnosticStatus.STALE}
+
+
+class Manager:
+    """
+    The system manager: its processes, their bring-up and what operators see of them.
+
+    Operators use three services of the node ``<system package>_bringup``
+    (std_srvs/Trigger): ``~/bring_up`` (every managed instance that is not
+    active), ``~/bring_down`` (deactivate, then clean up, those that came last
+    first) and ``~/report`` (the state of every instance; success when all
+    managed ones are active). The state of each instance is published on
+    ``/diagnostics``, one status per instance. With a heartbeat, a managed
+    instance that no longer answers, or left the state the system is in, is
+    reported; an instance marked ``respawn`` is started again when its
+    process ends, and brought back to the state of the system.
+    """
+
+    def __init__(self, node: Node, description: Dict[str, Any], params_file: str,
+                 args: argparse.Namespace) -> None:
+        self.node = node
+        self.description = description
+        self._params_file = params_file
+        self._args = args
+        self.instances = {i['instance']: i for i in description['instances']}
+        managed = {n: i['fqn'] for n, i in self.instances.items() if i['managed']}
+        self.managed = managed
+        after = {n: [a for a in self.instances[n]['after'] if a in managed] for n in managed}
+        timeouts = {n: float(self.instances[n]['timeout']) for n in managed
+                    if self.instances[n].get('timeout')}
+        self.activation = SystemActivation(
+            node, managed, after, timeout=args.timeout, start_timeout=args.start_timeout,
+            report=say, timeouts=timeouts)
+        self.stopping = threading.Event()
+        #: whether the system is meant to be up (operators bring it down and up)
+        self.up = True
+        self._lock = threading.Lock()
+        self._respawns: Dict[str, int] = {}
+        self._silent: Dict[str, str] = {}
+        self.processes = Processes(self._exited)
+        group = MutuallyExclusiveCallbackGroup()
+        for service, answer in (('bring_up', self._bring_up), ('bring_down', self._bring_down),
+                                ('report', self._report)):
+            node.create_service(Trigger, f'~/{service}', answer, callback_group=group)
+        self._diagnostics = node.create_publisher(DiagnosticArray, '/diagnostics', 10)
+        node.create_timer(args.diagnostics_period, self.publish_diagnostics)
+        if args.heartbeat > 0:
+            threading.Thread(target=self._heartbeat, daemon=True, name='heartbeat').start()
+
+    def start(self) -> None:
+        """Start every instance's process and bring the managed ones up."""
+        for name, instance in self.instances.items():
+            self.processes.start(name, command(instance, self._params_file))
+        self.processes.watch()
+        self.activation.start()
+
+    # what operators see
+
+    def states(self) -> Dict[str, str]:
+        """Return the state of every instance (``running`` or ``exited`` if not managed)."""
+        states = self.activation.states()
+        for name in self.instances:
+            if name not in self.managed:
+                states[name] = 'exited' if self.processes.ended(name) else 'running'
+            elif name in self._silent and states.get(name) != 'failed':
+                states[name] = 'unknown'
+        return states
+
+    def state_report(self) -> str:
+        """Return one line per instance: its state, and why where it failed."""
+        states = self.states()
+        failures = self.activation.failures()
+        lines = []
+        for name in self.instances:
+            state = states.get(name, 'starting')
+            why = failures.get(name) or self._silent.get(name)
+            lines.append(f'{name}: {state}' + (f' ({why})' if why else ''))
+        return '\n'.join(lines)
+
+    def publish_diagnostics(self) -> None:
+        """Publish the state of every instance on /diagnostics."""
+        states = self.states()
+        failures = self.activation.failures()
+        array = DiagnosticArray()
+        array.header.stamp = self.node.get_clock().now().to_msg()
+        for name, instance in self.instances.items():
+            state = states.get(name, 'starting')
+            level = _LEVELS.get(state, DiagnosticStatus.WARN)
+            if name not in self.managed:
+                level = DiagnosticStatus.ERROR if state == 'exited' else DiagnosticStatus.OK
+            why = failures.get(name) or self._silent.get(name) or ''
+            array.status.append(DiagnosticStatus(
+                level=level, name=f"{self.description['package']}: {name}",
+                message=f'{state}: {why}' if why else state, hardware_id=instance['fqn'],
+                values=[KeyValue(key='state', value=state),
+                        KeyValue(key='managed', value=str(instance['managed']).lower()),
+                        KeyValue(key='respawns', value=str(self._respawns.get(name, 0)))]))
+        self._diagnostics.publish(array)
+
+    def _bring_up(self, request: Any, response: Any) -> Any:
+        with self._lock:
+            self.up = True
+            todo = [n for n, s in self.activation.states().items() if s != 'active']
+            todo += [n for n in self.managed if n not in self.activation.states()]
+            if todo and not self.activation.running():
+                self.activation.start(sorted(set(todo)))
+            outcome = self.activation.wait()
+        response.success = outcome.ok
+        response.message = report(outcome, len(self.managed))
+        return response
+
+    def _bring_down(self, request: Any, response: Any) -> Any:
+        with self._lock:
+            self.up = False
+            self.activation.stop()
+            steps = self.activation.bring_down(timeout=min(self._args.timeout, 10.0))
+        response.success = True
+        response.message = '\n'.join(steps)
+        return response
+
+    def _report(self, request: Any, response: Any) -> Any:
+        states = self.states()
+        response.success = all(states.get(n) == 'active' for n in self.managed)
+        response.message = self.state_report()
+        return response
+
+    # instances that end or fall silent
+
+    def _exited(self, name: str, code: int) -> None:
+        if self.stopping.is_set():
+            return
+        instance = self.instances[name]
+        if instance.get('respawn'):
+            self._respawns[name] = self._respawns.get(name, 0) + 1
+            say('error', f'instance {name} exited with code {code}: starting it again '
+                f'(respawn {self._respawns[name]})')
+            if name in self.managed:
+                self.activation.instance_failed(name, f'exited with code {code}')
+            threading.Thread(target=self._respawn, args=(name,), daemon=True,
+                             name=f'respawn {name}').start()
+            return
+        if name in self.managed:
+            self.activation.instance_failed(name, f'exited with code {code}')
+        else:
+            say('error', f'instance {name} exited with code {code}')
+
+    def _respawn(self, name: str) -> None:
+        if self.stopping.wait(self._args.respawn_delay):
+            return
+        self.processes.start(name, command(self.instances[name], self._params_file))
+        if name in self.managed and self.up:
+            # brought back to the state of the system, with what it held back
+            self.activation.restart(name)
+
+    def _heartbeat(self) -> None:
+        period = self._args.heartbeat
+        missed: Dict[str, int] = {}
+        while not self.stopping.wait(period):
+            if self.activation.running() or not self.up:
+                continue
+            for name, state in self.activation.states().items():
+                if state == 'failed' or self.stopping.is_set():
+                    continue
+                answer = self.activation.probe(name, timeout=period)
+                if answer is None:
+                    missed[name] = missed.get(name, 0) + 1
+                    if missed[name] == 3 and name not in self._silent:
+                        self._silent[name] = f'no answer for {3 * period:g} s'
+                        say('error', f'instance {name} does not answer (heartbeat): '
+                            f'no answer for {3 * period:g} s')
+                    continue
+                missed[name] = 0
+                if answer != 'active':
+                    self._silent[name] = f'it is {answer}, not active'
+                    say('error', f'instance {name} is {answer}, not active (heartbeat)')
+                    self.activation.instance_failed(name, f'is {answer}, not active')
+                elif self._silent.pop(name, None) is not None:
+                    say('info', f'instance {name} answers again (heartbeat)')
+
+
+def say(level: str, text: str) -> None:
+    """Print a line of the bring-up: errors on stderr, the rest on stdout."""
+    print(f'bringup: {level}: {text}' if level == 'error' else f'bringup: {text}',
+          file=sys.stderr if level == 'error' else sys.stdout, flush=True)

@@ -1,0 +1,212 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""
+The smoke test of a system package: the system comes up, and every connection works.
+
+Every system package has a test that ``colcon test`` runs and that calls
+:func:`run`: it starts the system with its ``bringup`` executable (the system
+manager), waits until the manager reports every managed instance active, then
+checks within a timeout that each connection of the model carries data:
+
+- a topic (push, send): a message arrives on it;
+- a query: the service answers a request (a default one);
+- an action or an event: its server is there. A goal would make the system
+  do something (move a robot): a smoke test does not send one.
+
+Finally it brings the system down with SIGINT, as an operator would, and
+checks that the manager exits 0.
+"""
+
+from __future__ import annotations
+
+import importlib
+import json
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from typing import Any, Callable, Dict, List, Optional
+
+from ament_index_python.packages import get_package_prefix, get_package_share_directory
+import rclpy
+from rclpy.executors import MultiThreadedExecutor
+from rclpy.node import Node
+from rclpy.qos import QoSProfile, ReliabilityPolicy
+from robmosys_runtime.ports import ActionClient
+from std_srvs.srv import Trigger
+
+#: compatible with every publisher: best effort and volatile are what any offer matches
+_ANY_PUBLISHER = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT)
+
+
+def interface(name: str) -> Any:
+    """Return the Python class of an interface named ``pkg/kind/Type``."""
+    package, kind, type_name = name.split('/')
+    return getattr(importlib.import_module(f'{package}.{kind}'), type_name)
+
+
+class _Probe:
+    """Listens to the topics of a system and calls its services and servers."""
+
+    def __init__(self, node: Node) -> None:
+        self._node = node
+        self._received: Dict[str, int] = {}
+        self._lock = threading.Lock()
+
+    def listen(self, topic: str, msg_type: Any) -> None:
+        """Count the messages on a topic, from now on."""
+        def count(message: Any) -> None:
+            with self._lock:
+                self._received[topic] = self._received.get(topic, 0) + 1
+        self._node.create_subscription(msg_type, topic, count, _ANY_PUBLISHER)
+
+    def received(self, topic: str) -> bool:
+        """Tell whether a message arrived on a topic."""
+        with self._lock:
+            return self._received.get(topic, 0) > 0
+
+    def call(self, name: str, srv_type: Any, request: Any, timeout: float) -> Optional[Any]:
+        """Call a service; return its answer, or None if none came within timeout."""
+        client = self._node.create_client(srv_type, name)
+        try:
+            deadline = time.monotonic() + timeout
+            while time.monotonic() < deadline:
+                if not client.wait_for_service(timeout_sec=min(1.0, timeout)):
+                    continue
+                answered = threading.Event()
+                future = client.call_async(request)
+                future.add_done_callback(lambda _: answered.set())
+                # a request sent before the answer's way matched is lost: ask again
+                if answered.wait(min(2.0, max(0.1, deadline - time.monotonic()))):
+                    return future.result()
+                client.remove_pending_request(future)
+            return None
+        finally:
+            self._node.destroy_client(client)
+
+    def server_there(self, name: str, action_type: Any, timeout: float) -> bool:
+        """Tell whether an action server (or an event server) answers to a name."""
+        client = ActionClient(self._node, action_type, name)
+        try:
+            return bool(client.wait_for_server(timeout_sec=timeout))
+        finally:
+            client.destroy()
+
+
+def _wait(condition: Callable[[], bool], timeout: float, period: float = 0.1) -> bool:
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if condition():
+            return True
+        time.sleep(period)
+    return condition()
+
+
+def run(package: str, *, timeout: float = 30.0, bring_up_timeout: float = 120.0,
+        bringup_args: Optional[List[str]] = None,
+        description_file: Optional[str] = None) -> List[str]:
+    """
+    Run the smoke test of a system package; return its problems (none: it passed).
+
+    :param timeout: seconds for every connection to carry data, once the system is up
+    :param bring_up_timeout: seconds for every managed instance to become active
+    :param bringup_args: further arguments of the bringup executable
+    :param description_file: the system's description, by default the one the
+        package installs (``share/<package>/bringup.json``)
+    """
+    if description_file is None:
+        description_file = os.path.join(get_package_share_directory(package), 'bringup.json')
+    with open(description_file, encoding='utf-8') as stream:
+        description = json.load(stream)
+    bringup = os.path.join(get_package_prefix(package), 'lib', package, 'bringup')
+    problems: List[str] = []
+    with tempfile.TemporaryFile() as log:
+        manager = subprocess.Popen(
+            [sys.executable, bringup, '--exit-on-failure', '--description', description_file,
+             *(bringup_args or [])],
+            stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
+            start_new_session=True)
+        context = rclpy.Context()
+        rclpy.init(context=context)
+        node = Node(f'{package}_smoke_test', context=context)
+        executor = MultiThreadedExecutor(num_threads=4, context=context)
+        executor.add_node(node)
+        spinner = threading.Thread(target=executor.spin, daemon=True)
+        spinner.start()
+        try:
+            problems += _check(node, description, manager, timeout, bring_up_timeout)
+        finally:
+            problems += _stop(manager)
+            executor.shutdown()
+            node.destroy_node()
+            rclpy.try_shutdown(context=context)
+            spinner.join(10)
+            if problems:
+                log.seek(0)
+                problems.append('what the system printed:\n' +
+                                log.read().decode('utf-8', 'replace'))
+    return problems
+
+
+def _check(node: Node, description: Dict[str, Any], manager: 'subprocess.Popen[bytes]',
+           timeout: float, bring_up_timeout: float) -> List[str]:
+    package = description['package']
+    probe = _Probe(node)
+    connections = description.get('connections', [])
+    topics = [c for c in connections if c['entity'] in ('publisher', 'subscription')]
+    for connection in topics:
+        # listening before the system comes up: the first messages count too
+        probe.listen(connection['name'], interface(connection['type']))
+
+    managed = sum(1 for i in description['instances'] if i['managed'])
+    answer: List[Any] = []
+
+    def all_active() -> bool:
+        if manager.poll() is not None:
+            return True
+        report = probe.call(f'/{package}_bringup/report', Trigger, Trigger.Request(), 5.0)
+        answer[:] = [report]
+        return report is not None and bool(report.success)
+    if not _wait(all_active, bring_up_timeout, period=0.5) or manager.poll() is not None:
+        last = answer[0].message if answer and answer[0] is not None else 'no report'
+        if manager.poll() is not None:
+            return [f'the system did not come up: bringup exited with code '
+                    f'{manager.returncode}']
+        return [f'the system did not come up within {bring_up_timeout:g} s '
+                f'({managed} managed instances):\n{last}']
+
+    problems = []
+    deadline = time.monotonic() + timeout
+    for connection in connections:
+        what = f"{connection['from']} -> {connection['to']} ({connection['name']}, " \
+            f"{connection['type']})"
+        left = max(1.0, deadline - time.monotonic())
+        entity = connection['entity']
+        if entity in ('publisher', 'subscription'):
+            if not _wait(lambda: probe.received(connection['name']), left):
+                problems.append(f'no message on {what} within {timeout:g} s')
+        elif entity == 'service':
+            srv_type = interface(connection['type'])
+            if probe.call(connection['name'], srv_type, srv_type.Request(), left) is None:
+                problems.append(f'no answer from {what} within {timeout:g} s')
+        elif not probe.server_there(connection['name'], interface(connection['type']), left):
+            problems.append(f'no server of {what} within {timeout:g} s')
+    return problems
+
+
+def _stop(manager: 'subprocess.Popen[bytes]', timeout: float = 60.0) -> List[str]:
+    """Bring the system down as an operator does (SIGINT); return the problems."""
+    if manager.poll() is None:
+        os.killpg(manager.pid, signal.SIGINT)
+        try:
+            manager.wait(timeout)
+        except subprocess.TimeoutExpired:
+            os.killpg(manager.pid, signal.SIGKILL)
+            manager.wait()
+            return [f'bringup did not end within {timeout:g} s of SIGINT']
+        if manager.returncode != 0:
+            return [f'bringup exited with code {manager.returncode} after SIGINT']
+    return []
