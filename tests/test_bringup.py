@@ -305,3 +305,76 @@ def _smoke(built: BuiltWorkspace, **kwargs) -> list:
                          env=built.env(free_domain_id()), timeout=300)
     assert result.returncode == 0, result.stdout + result.stderr
     return json.loads(result.stdout.splitlines()[-1])
+
+
+def _processes_with(marker: str) -> list[int]:
+    """Return the pids of the processes whose command line holds marker."""
+    pids = []
+    for entry in Path('/proc').iterdir():
+        try:
+            if entry.name.isdigit() and marker.encode() in (entry / 'cmdline').read_bytes():
+                pids.append(int(entry.name))
+        except OSError:
+            continue
+    return pids
+
+
+def test_shared_processes_run_the_python_instances_in_one_process(test_workspace_built,
+                                                                  tmp_path):
+    description = _description(test_workspace_built)
+    path = tmp_path / 'bringup.json'
+    path.write_text(json.dumps(description))
+    with _bringup(test_workspace_built, '--description', str(path), '--shared') as bringup:
+        assert wait_until(lambda: _all_up(bringup), timeout=90), bringup.output()
+        assert wait_until(lambda: re.search(r'received hi there \d+', bringup.output())
+                          is not None, timeout=30), bringup.output()
+        # one process holds the eight nodes: none of them has a process of its own
+        containers = [p for p in _processes_with('robmosys_runtime.container')
+                      if str(path).encode() in Path(f'/proc/{p}/cmdline').read_bytes()]
+        assert len(containers) == 1, containers
+        assert not [p for p in _processes_with('__node:=sender')
+                    if str(test_workspace_built.root).encode() in
+                    Path(f'/proc/{p}/cmdline').read_bytes()]
+        bringup.proc.send_signal(signal.SIGINT)
+        assert bringup.proc.wait(timeout=60) == 0, bringup.output()
+        output = bringup.output()
+    assert len(re.findall(r'bringup: cleanup \w+', output)) == 8, output
+    assert 'Traceback' not in output, output
+
+
+def test_instances_on_another_host_are_brought_up_by_the_manager(test_workspace_built,
+                                                                 tmp_path):
+    description = _description(test_workspace_built)
+    remote = {'sender', 'add_server', 'fibonacci_server', 'level_sensor'}
+    for instance in description['instances']:
+        if instance['instance'] in remote:
+            instance['host'] = 'robot'
+    path = tmp_path / 'bringup.json'
+    path.write_text(json.dumps(description))
+    domain_id = free_domain_id()
+    # two "hosts": two bringup processes in one domain, on loopback
+    with _bringup(test_workspace_built, '--description', str(path), '--host', 'robot',
+                  domain_id=domain_id) as robot, \
+            _bringup(test_workspace_built, '--description', str(path),
+                     domain_id=domain_id) as manager:
+        assert wait_until(lambda: _all_up(manager), timeout=90), \
+            manager.output() + robot.output()
+        assert 'bringup: host robot: started add_server, fibonacci_server, level_sensor, ' \
+            'sender' in robot.output(), robot.output()
+        # the receiver runs here, the sender there: data flows between the hosts
+        assert wait_until(lambda: re.search(r'received hi there \d+', manager.output())
+                          is not None, timeout=30), manager.output()
+        manager.proc.send_signal(signal.SIGINT)
+        assert manager.proc.wait(timeout=60) == 0, manager.output()
+        steps = re.findall(r'bringup: (deactivate|cleanup) (\w+)', manager.output())
+        assert {n for s, n in steps if s == 'cleanup'} >= remote, manager.output()
+        robot.proc.send_signal(signal.SIGINT)
+        assert robot.proc.wait(timeout=60) == 0, robot.output()
+        assert 'Traceback' not in manager.output() + robot.output()
+
+
+def test_a_host_without_instances_is_an_error(test_workspace_built):
+    with _bringup(test_workspace_built, '--host', 'nowhere') as bringup:
+        assert bringup.proc.wait(timeout=60) == 1, bringup.output()
+        assert 'bringup: error: no instance of the system runs on the host nowhere' in \
+            bringup.output()

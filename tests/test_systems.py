@@ -338,3 +338,29 @@ def test_respawn_and_timeouts_of_the_model_reach_the_manager_and_the_launch_file
         out / 'launch' / 'examples_system.nodes.launch.py', out)}
     assert nodes['sender'].extra == {**LAUNCH_EXTRA, 'respawn': True}
     assert nodes['receiver'].extra == LAUNCH_EXTRA
+
+
+def test_a_system_on_two_hosts_has_launch_files_per_host(tmp_path):
+    (tmp_path / 'src' / 'hosted').mkdir(parents=True)
+    shutil.copy(Path(__file__).parent / 'models' / 'valid' / 'system_on_two_hosts.yaml',
+                tmp_path / 'src' / 'hosted' / 'robmosys.yaml')
+    workspace = _load(tmp_path / 'src')
+    out = tmp_path / 'out'
+    generate_package(plan_package(workspace, 'hosted_system'), out)
+    launch = out / 'launch'
+    names = {p.name for p in launch.iterdir()}
+    assert {'hosted_system.on_robot.nodes.launch.py', 'hosted_system.on_robot.launch.py'} <= names
+    # the files of hosts are new: no alias under the names of the last release
+    assert not {n for n in names if 'on_robot' in n and not n.startswith('hosted_system.')}
+    # the manager's files start the instances of no host, and activate every one
+    assert [n.name for n in read_launch_file(launch / 'hosted_system.nodes.launch.py', out)] \
+        == ['planner']
+    assert read_activate_after(launch / 'hosted_system.launch.py') == {
+        'arm': [], 'planner': ['arm']}
+    assert [n.name for n in read_launch_file(
+        launch / 'hosted_system.on_robot.nodes.launch.py', out)] == ['arm']
+    description = json.loads((out / 'bringup.json').read_text())
+    assert description['processes'] == 'shared'
+    instances = {i['instance']: i for i in description['instances']}
+    assert instances['arm']['host'] == 'robot' and instances['planner']['host'] == ''
+    assert instances['arm']['python_class'] == 'single_component.Single:Single'

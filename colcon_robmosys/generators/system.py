@@ -16,9 +16,10 @@ LAUNCH_FILES = (
     Row('launch/{nodes_file}', 'system/launch.py.jinja'),
     Row('launch/{activate_file}', 'system/activate.py.jinja'),
     # the names of the last release, kept for one more
-    Row('launch/launch{suffix}.py', 'system/alias.launch.py.jinja', part='nodes_alias'),
+    Row('launch/launch{suffix}.py', 'system/alias.launch.py.jinja', part='nodes_alias',
+        when='has_aliases'),
     Row('launch/activate{suffix}.py', 'system/alias.launch.py.jinja',
-        part='activate_alias'),
+        part='activate_alias', when='has_aliases'),
 )
 
 #: template -> output path

@@ -116,6 +116,11 @@ class ComponentPlan:
         return f'{self.cls}_impl' if self.has_impl else self.cls
 
     @property
+    def node_module(self) -> str:
+        """Return the module of :attr:`node_cls`, in the package (Python)."""
+        return self.node_cls
+
+    @property
     def callback_groups(self) -> int:
         """Return the callback groups: one per activity and per client."""
         return len(self.activities) + sum(1 for p in self.ports

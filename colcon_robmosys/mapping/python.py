@@ -265,7 +265,7 @@ def spell_python(component: Component, plan: ComponentPlan) -> PyComponent:
     functions = tuple(_function(f, type_names) for f in plan.functions)
     user_functions = tuple(f for f in functions if f.code is None)
     uses_duration = 'Duration(' in ''.join(p.qos or '' for p in ports)
-    node_module = f'{cls}_impl' if plan.has_impl else cls
+    node_module = plan.node_module
     # the user's file imports the types its signatures name
     used = {f.returns.split('.')[0] for f in user_functions}
     impl_modules: dict[str, set[str]] = {f'{package}.{cls}': {cls}}

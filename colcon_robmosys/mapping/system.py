@@ -11,12 +11,13 @@ from typing import Any
 
 from colcon_robmosys.mapping.common import (
     Banner, banner_of, package_xml, PackageXml, unique)
+from colcon_robmosys.mapping.component import plan_component
 from colcon_robmosys.mapping.connections import (
     connection_topics, node_fqn, provided_end, system_connections, SystemConnection)
 from colcon_robmosys.mapping.cpp import RUNTIME_PACKAGE
 from colcon_robmosys.mapping.portkinds import port_kind
 from colcon_robmosys.model.parameters import freeze_parameter_value
-from colcon_robmosys.model.types import Component, Instance, System, Workspace
+from colcon_robmosys.model.types import Component, Instance, Language, System, Workspace
 
 PARAMS_FILE = 'cfg/params.yaml'
 
@@ -41,6 +42,10 @@ class SystemNode:
     respawn: bool = False
     #: seconds for each lifecycle transition; None: the bring-up's default
     timeout: float | None = None
+    #: the host it runs on; '' for the manager's
+    host: str = ''
+    #: module:class of a Python component (``bringup`` runs shared processes with it)
+    python_class: str = ''
 
 
 @dataclass(frozen=True)
@@ -71,6 +76,8 @@ class LaunchFile:
     params_file: str
     nodes: tuple[SystemNode, ...]
     what: str
+    #: instances it activates that the launch file of their host starts
+    remote: tuple[SystemNode, ...] = ()
 
     @property
     def stem(self) -> str:
@@ -86,6 +93,11 @@ class LaunchFile:
     def nodes_file(self) -> str:
         """Return the file name of the launch file that only starts the nodes."""
         return f'{self.stem}.nodes.launch.py'
+
+    @property
+    def has_aliases(self) -> bool:
+        """Tell whether the last release had the file: the files of hosts are new."""
+        return not self.suffix.startswith('.on_')
 
     @property
     def activate_alias(self) -> LaunchAlias:
@@ -159,6 +171,8 @@ class SystemPackage:
     exec_depends: tuple[str, ...]
     package_xml: PackageXml
     connections: tuple[SystemConnection, ...] = ()
+    #: 'per_instance', or 'shared': bringup runs the Python instances of a host in one process
+    processes: str = 'per_instance'
 
     @property
     def bringup_description(self) -> str:
@@ -171,12 +185,13 @@ class SystemPackage:
             'instance': n.instance, 'package': n.package, 'executable': n.executable,
             'name': n.name, 'namespace': n.namespace, 'fqn': n.fqn,
             'remappings': [list(r) for r in n.remappings], 'managed': n.activate,
-            'after': list(n.after), 'respawn': n.respawn, 'timeout': n.timeout}
-            for n in self.nodes]
+            'after': list(n.after), 'respawn': n.respawn, 'timeout': n.timeout,
+            'host': n.host, 'python_class': n.python_class} for n in self.nodes]
         connections = [{'name': c.name, 'entity': c.entity, 'type': c.type,
                         'from': c.source, 'to': c.target} for c in self.connections]
         return json.dumps({'generated_by': ' '.join(self.banner.lines),
                            'package': self.package, 'params_file': PARAMS_FILE,
+                           'processes': self.processes,
                            'instances': instances, 'connections': connections},
                           indent=2, sort_keys=True) + '\n'
 
@@ -205,24 +220,43 @@ def _node(instance: Instance, component: Component,
                          for p in component.ports
                          if (instance.name, p.name) in topics),
         activate=instance.activate, after=instance.after,
-        fqn=node_fqn(instance), respawn=instance.respawn, timeout=instance.timeout)
+        fqn=node_fqn(instance), respawn=instance.respawn, timeout=instance.timeout,
+        host=instance.host,
+        python_class=_python_class(component))
+
+
+def _python_class(component: Component) -> str:
+    """Return module:class of the node a Python component's executable runs."""
+    if component.language is not Language.PYTHON:
+        return ''
+    plan = plan_component(component)
+    return f'{plan.package}.{plan.node_module}:{plan.node_cls}'
 
 
 def _launch_files(system: System, nodes: tuple[SystemNode, ...],
                   banner: Banner) -> tuple[LaunchFile, ...]:
-    variants = [('', nodes, f'every instance of the system {system.name}')]
-    variants += [(f'.{n.instance}', (n,), f'the instance {n.instance} '
+    local = tuple(n for n in nodes if not n.host)
+    remote = tuple(n for n in nodes if n.host)
+    # the system's files start the instances of the manager's host, and
+    # activate those of every host
+    variants = [('', local, remote, f'every instance of the system {system.name}'
+                 + (' that runs on no host of its own' if remote else ''))]
+    variants += [(f'.{n.instance}', (n,), (), f'the instance {n.instance} '
                   f'of the system {system.name}') for n in nodes]
+    variants += [(f'.on_{host}', tuple(n for n in remote if n.host == host), (),
+                  f'the instances of the system {system.name} on the host {host}')
+                 for host in unique(n.host for n in remote)]
     files = []
-    for suffix, selected, what in variants:
+    for suffix, selected, elsewhere, what in variants:
         # a file waits only for instances it activates itself: an instance
         # started by another file, or left unmanaged, would never be seen
-        managed = {n.instance for n in selected if n.activate}
-        files.append(LaunchFile(
-            suffix, banner, system.package, PARAMS_FILE,
-            tuple(replace(n, activate_after=tuple(a for a in n.after
-                                                  if a in managed))
-                  for n in selected), what))
+        managed = {n.instance for n in selected + elsewhere if n.activate}
+
+        def waiting(chosen: tuple[SystemNode, ...]) -> tuple[SystemNode, ...]:
+            return tuple(replace(n, activate_after=tuple(a for a in n.after if a in managed))
+                         for n in chosen)
+        files.append(LaunchFile(suffix, banner, system.package, PARAMS_FILE,
+                                waiting(selected), what, waiting(elsewhere)))
     return tuple(files)
 
 
@@ -294,6 +328,7 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
         instances=_instances(system, components),
         edges=_edges(system, components, topics),
         connections=system_connections(system, components, topics),
+        processes=system.processes,
         depends=packages, exec_depends=exec_depends,
         package_xml=package_xml(banner, system.info, buildtool=['ament_cmake'],
                                 exec_=exec_depends,

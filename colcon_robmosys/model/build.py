@@ -62,7 +62,15 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
                 body.get('description', ''), self.at(ipath, key=True),
                 tuple(self.at(ipath + ('parameters', n), key=True)
                       for n, _ in parameters),
-                bool(body.get('respawn', False)), body.get('timeout')))
+                bool(body.get('respawn', False)), body.get('timeout'),
+                body.get('host', '')))
+        hosts = {i.host for i in instances if i.host}
+        for instance in instances:
+            if instance.name.startswith('on_') and instance.name[3:] in hosts:
+                # <system>.on_<host>.launch.py starts the instances of a host
+                self.error(path + ('instances', instance.name),
+                           f"instance name '{instance.name}' is the name of the launch "
+                           f"files of the host '{instance.name[3:]}'", key=True)
         connections = []
         for index, body in enumerate(raw.get('connections', [])):
             cpath = path + ('connections', index)
@@ -75,7 +83,8 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
                                           body.get('topic'),
                                           self.at(cpath, key=True)))
         return System(info, name, tuple(instances), tuple(connections),
-                      self.at(path + ('package',)))
+                      self.at(path + ('package',)),
+                      raw.get('processes', 'per_instance'))
 
 
 def _camel(package: str) -> str:

@@ -30,6 +30,8 @@ class Instance:
     respawn: bool = False
     #: seconds for each lifecycle transition; None: the bring-up's default
     timeout: float | None = None
+    #: the host it runs on; '' for the manager's
+    host: str = ''
 
 
 @dataclass(frozen=True)
@@ -63,6 +65,8 @@ class System:
     instances: tuple[Instance, ...]
     connections: tuple[Connection, ...]
     location: Location
+    #: 'per_instance' or 'shared' (the Python instances of a host in one process)
+    processes: str = 'per_instance'
 
     @property
     def package(self) -> str:

@@ -22,12 +22,13 @@ import json
 import os
 import signal
 import threading
-from typing import Any, Optional, Sequence
+from typing import Any, Dict, Optional, Sequence
 
 from ament_index_python.packages import get_package_share_directory
 import rclpy
 from rclpy.executors import MultiThreadedExecutor
-from robmosys_runtime.manager import Manager, report
+from robmosys_runtime.manager import Manager, report, say
+from robmosys_runtime.processes import plan_processes, Processes
 
 
 def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
@@ -50,12 +51,23 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
                         help='seconds before an instance marked respawn is started again')
     parser.add_argument('--diagnostics-period', type=float, default=1.0, metavar='SECONDS',
                         help='seconds between two publications on /diagnostics')
+    parser.add_argument('--host', metavar='HOST',
+                        help='start only the instances the model puts on this host, and '
+                        'leave bringing them up to the manager (bringup without --host)')
+    layout = parser.add_mutually_exclusive_group()
+    layout.add_argument('--shared', dest='processes', action='store_true', default=None,
+                        help='run the Python instances in one process (the model says '
+                        'by default: processes: shared)')
+    layout.add_argument('--per-instance', dest='processes', action='store_false',
+                        help='run every instance in a process of its own')
     parser.add_argument('--description', default=description_file, help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     with open(args.description, encoding='utf-8') as stream:
         description = json.load(stream)
     package = description['package']
     params_file = os.path.join(get_package_share_directory(package), description['params_file'])
+    if args.host:
+        return run_host(description, args, params_file)
 
     rclpy.init(args=['--ros-args', '-r', f'__node:={package}_bringup'])
     node = rclpy.create_node(f'{package}_bringup')
@@ -99,3 +111,51 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
         node.destroy_node()
         rclpy.try_shutdown()
     return status if args.exit_on_failure else 0
+
+
+def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file: str) -> int:
+    """
+    Run the instances of one host until SIGINT or SIGTERM; return the exit status.
+
+    The manager, on its own host, brings them up with the others; instances
+    marked respawn are started again here, and its heartbeat brings them back.
+    """
+    groups = plan_processes(description, args.description, params_file, host=args.host,
+                            shared=args.processes)
+    if not groups:
+        say('error', f'no instance of the system runs on the host {args.host}')
+        return 1
+    stopping = threading.Event()
+
+    def exited(group: str, code: int) -> None:
+        if stopping.is_set():
+            return
+        names = groups[group][0]
+        if any(i.get('respawn') for i in description['instances'] if i['instance'] in names):
+            say('error', f"{', '.join(names)} exited with code {code}: starting it again")
+            if not stopping.wait(args.respawn_delay):
+                processes.start(group, groups[group][1])
+        else:
+            say('error', f"{', '.join(names)} exited with code {code}")
+
+    processes = Processes(exited)
+
+    def on_signal(signum: int, frame: Any) -> None:
+        if stopping.is_set():
+            processes.kill()
+            os._exit(128 + signum)
+        stopping.set()
+
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, on_signal)
+    try:
+        for group, (_, command_line) in groups.items():
+            processes.start(group, command_line)
+        processes.watch()
+        started = sorted(n for names, _ in groups.values() for n in names)
+        say('info', f"host {args.host}: started {', '.join(started)}")
+        while not stopping.wait(0.5):
+            pass
+    finally:
+        processes.stop()
+    return 0

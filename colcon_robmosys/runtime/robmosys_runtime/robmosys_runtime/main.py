@@ -7,7 +7,7 @@ from __future__ import annotations
 import os
 import signal
 from types import FrameType
-from typing import Callable, List, Optional
+from typing import Callable, List, Optional, Sequence
 
 import rclpy
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
@@ -36,10 +36,24 @@ def run(node_factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
 
     Return the exit status of the process (0).
     """
+    return run_nodes([node_factory], args)
+
+
+def run_nodes(node_factories: Sequence[Callable[[], Node]],
+              args: Optional[List[str]] = None) -> int:
+    """
+    Spin several nodes in one process until SIGINT or SIGTERM, then shut down cleanly.
+
+    Every node has the threads a node of its own would have to spare, so a
+    blocking call of one cannot starve the others. Return the exit status (0).
+    """
     rclpy.init(args=args)
-    node = node_factory()
-    executor = MultiThreadedExecutor(num_threads=executor_threads())
-    executor.add_node(node)
+    nodes = [factory() for factory in node_factories]
+    threads = executor_threads() if len(nodes) == 1 else \
+        max(executor_threads(), 2 * len(nodes))
+    executor = MultiThreadedExecutor(num_threads=threads)
+    for node in nodes:
+        executor.add_node(node)
     try:
         executor.spin()
     except (KeyboardInterrupt, ExternalShutdownException):
@@ -53,8 +67,9 @@ def run(node_factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
         for signum in (signal.SIGINT, signal.SIGTERM):
             signal.signal(signum, _exit_at_once)
         executor.shutdown()
-        _settle_callbacks(executor, node)
-        node.destroy_node()
+        _settle_callbacks(executor, nodes[0])
+        for node in nodes:
+            node.destroy_node()
         rclpy.try_shutdown()
     return 0
 

@@ -13,95 +13,16 @@ services and ``/diagnostics``; ``ros2 run <system> bringup``
 from __future__ import annotations
 
 import argparse
-import os
-import signal
-import subprocess
 import sys
 import threading
-import time
-from typing import Any, Dict, List, Sequence
+from typing import Any, Dict
 
-from ament_index_python.packages import get_package_prefix
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.node import Node
 from robmosys_runtime.activation import Outcome, SystemActivation
+from robmosys_runtime.processes import plan_processes, Processes
 from std_srvs.srv import Trigger
-
-#: seconds each process has to end after SIGINT, before SIGKILL
-STOP_TIMEOUT = 10.0
-
-
-def command(instance: Dict[str, Any], params_file: str) -> List[str]:
-    """Return the command line of an instance, as launch_ros would build it."""
-    executable = instance.get('command') or [os.path.join(
-        get_package_prefix(instance['package']), 'lib', instance['package'],
-        instance['executable'])]
-    args = list(executable) + ['--ros-args', '-r', f"__node:={instance['name']}"]
-    if instance['namespace']:
-        args += ['-r', f"__ns:={instance['namespace']}"]
-    args += ['--params-file', params_file]
-    for source, target in instance['remappings']:
-        args += ['-r', f'{source}:={target}']
-    return args
-
-
-class Processes:
-    """The processes of the instances, watched: one that ends is reported."""
-
-    def __init__(self, on_exit: Any) -> None:
-        self._processes: Dict[str, subprocess.Popen[bytes]] = {}
-        self._on_exit = on_exit
-        self._stopping = threading.Event()
-        self._watch = threading.Thread(target=self._watch_loop, daemon=True)
-
-    def start(self, name: str, args: Sequence[str]) -> None:
-        """Start an instance in a session of its own: a Ctrl-C reaches only bringup."""
-        self._processes[name] = subprocess.Popen(
-            list(args), stdin=subprocess.DEVNULL, start_new_session=True)
-
-    def watch(self) -> None:
-        """Start watching the processes."""
-        self._watch.start()
-
-    def ended(self, name: str) -> bool:
-        """Tell whether the process of an instance has ended."""
-        return self._processes[name].poll() is not None
-
-    def _watch_loop(self) -> None:
-        reported: Dict[str, subprocess.Popen[bytes]] = {}
-        while not self._stopping.wait(0.1):
-            for name, process in list(self._processes.items()):
-                code = process.poll()
-                # a process started again is watched again
-                if code is not None and reported.get(name) is not process:
-                    reported[name] = process
-                    self._on_exit(name, code)
-
-    def stop(self, timeout: float = STOP_TIMEOUT) -> None:
-        """Ask every process to end (SIGINT), then kill what is left after timeout."""
-        self._stopping.set()
-        for process in self._processes.values():
-            if process.poll() is None:
-                try:
-                    os.killpg(process.pid, signal.SIGINT)
-                except ProcessLookupError:
-                    pass
-        deadline = time.monotonic() + timeout
-        for process in self._processes.values():
-            try:
-                process.wait(max(0.0, deadline - time.monotonic()))
-            except subprocess.TimeoutExpired:
-                self.kill()
-
-    def kill(self) -> None:
-        """End every process at once."""
-        self._stopping.set()
-        for process in self._processes.values():
-            try:
-                os.killpg(process.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
 
 
 def report(outcome: Outcome, total: int) -> str:
@@ -137,9 +58,12 @@ class Manager:
                  args: argparse.Namespace) -> None:
         self.node = node
         self.description = description
-        self._params_file = params_file
         self._args = args
         self.instances = {i['instance']: i for i in description['instances']}
+        #: process name -> (its instances, its command line), of the manager's host
+        self.groups = plan_processes(description, args.description, params_file,
+                                     shared=args.processes)
+        self._group_of = {n: g for g, (names, _) in self.groups.items() for n in names}
         managed = {n: i['fqn'] for n, i in self.instances.items() if i['managed']}
         self.managed = managed
         after = {n: [a for a in self.instances[n]['after'] if a in managed] for n in managed}
@@ -165,9 +89,9 @@ class Manager:
             threading.Thread(target=self._heartbeat, daemon=True, name='heartbeat').start()
 
     def start(self) -> None:
-        """Start every instance's process and bring the managed ones up."""
-        for name, instance in self.instances.items():
-            self.processes.start(name, command(instance, self._params_file))
+        """Start the processes of this host and bring every managed instance up."""
+        for group, (_, args) in self.groups.items():
+            self.processes.start(group, args)
         self.processes.watch()
         self.activation.start()
 
@@ -178,7 +102,11 @@ class Manager:
         states = self.activation.states()
         for name in self.instances:
             if name not in self.managed:
-                states[name] = 'exited' if self.processes.ended(name) else 'running'
+                if name not in self._group_of:
+                    states[name] = 'elsewhere'
+                else:
+                    states[name] = 'exited' if self.processes.ended(
+                        self._group_of[name]) else 'running'
             elif name in self._silent and states.get(name) != 'failed':
                 states[name] = 'unknown'
         return states
@@ -211,7 +139,8 @@ class Manager:
                 message=f'{state}: {why}' if why else state, hardware_id=instance['fqn'],
                 values=[KeyValue(key='state', value=state),
                         KeyValue(key='managed', value=str(instance['managed']).lower()),
-                        KeyValue(key='respawns', value=str(self._respawns.get(name, 0)))]))
+                        KeyValue(key='respawns', value=str(self._respawns.get(
+                            self._group_of.get(name, name), 0)))]))
         self._diagnostics.publish(array)
 
     def _bring_up(self, request: Any, response: Any) -> Any:
@@ -243,31 +172,32 @@ class Manager:
 
     # instances that end or fall silent
 
-    def _exited(self, name: str, code: int) -> None:
+    def _exited(self, group: str, code: int) -> None:
         if self.stopping.is_set():
             return
-        instance = self.instances[name]
-        if instance.get('respawn'):
-            self._respawns[name] = self._respawns.get(name, 0) + 1
-            say('error', f'instance {name} exited with code {code}: starting it again '
-                f'(respawn {self._respawns[name]})')
+        names = self.groups[group][0]
+        respawn = any(self.instances[n].get('respawn') for n in names)
+        if respawn:
+            self._respawns[group] = self._respawns.get(group, 0) + 1
+        again = f': starting it again (respawn {self._respawns[group]})' if respawn else ''
+        for name in names:
             if name in self.managed:
-                self.activation.instance_failed(name, f'exited with code {code}')
-            threading.Thread(target=self._respawn, args=(name,), daemon=True,
-                             name=f'respawn {name}').start()
-            return
-        if name in self.managed:
-            self.activation.instance_failed(name, f'exited with code {code}')
-        else:
-            say('error', f'instance {name} exited with code {code}')
+                self.activation.instance_failed(name, f'exited with code {code}{again}')
+            else:
+                say('error', f'instance {name} exited with code {code}{again}')
+        if respawn:
+            threading.Thread(target=self._respawn, args=(group,), daemon=True,
+                             name=f'respawn {group}').start()
 
-    def _respawn(self, name: str) -> None:
+    def _respawn(self, group: str) -> None:
         if self.stopping.wait(self._args.respawn_delay):
             return
-        self.processes.start(name, command(self.instances[name], self._params_file))
-        if name in self.managed and self.up:
-            # brought back to the state of the system, with what it held back
-            self.activation.restart(name)
+        names, args = self.groups[group]
+        self.processes.start(group, args)
+        for name in names:
+            if name in self.managed and self.up:
+                # brought back to the state of the system, with what it held back
+                self.activation.restart(name)
 
     def _heartbeat(self) -> None:
         period = self._args.heartbeat
@@ -287,7 +217,12 @@ class Manager:
                             f'no answer for {3 * period:g} s')
                     continue
                 missed[name] = 0
-                if answer != 'active':
+                if answer == 'unconfigured' and self.instances[name].get('respawn'):
+                    # started again by the bringup of its host: bring it back
+                    say('info', f'instance {name} came back (heartbeat): bringing it up')
+                    self._silent.pop(name, None)
+                    self.activation.restart(name)
+                elif answer != 'active':
                     self._silent[name] = f'it is {answer}, not active'
                     say('error', f'instance {name} is {answer}, not active (heartbeat)')
                     self.activation.instance_failed(name, f'is {answer}, not active')

@@ -1,0 +1,133 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""
+The processes of a system's instances: their command lines, grouped, watched.
+
+One process per instance runs the instance's executable with the arguments
+launch_ros would give it. With ``processes: shared`` the Python instances of
+a host share one multi-threaded process (:mod:`robmosys_runtime.container`):
+a 50-instance system then does not start 50 Python interpreters.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+from typing import Any, Dict, List, Optional, Sequence, Tuple
+
+from ament_index_python.packages import get_package_prefix
+
+#: seconds each process has to end after SIGINT, before SIGKILL
+STOP_TIMEOUT = 10.0
+
+
+def command(instance: Dict[str, Any], params_file: str) -> List[str]:
+    """Return the command line of an instance, as launch_ros would build it."""
+    executable = instance.get('command') or [os.path.join(
+        get_package_prefix(instance['package']), 'lib', instance['package'],
+        instance['executable'])]
+    args = list(executable) + ['--ros-args', '-r', f"__node:={instance['name']}"]
+    if instance['namespace']:
+        args += ['-r', f"__ns:={instance['namespace']}"]
+    return args + node_arguments(instance, params_file)
+
+
+class Processes:
+    """The processes of the instances, watched: one that ends is reported."""
+
+    def __init__(self, on_exit: Any) -> None:
+        self._processes: Dict[str, subprocess.Popen[bytes]] = {}
+        self._on_exit = on_exit
+        self._stopping = threading.Event()
+        self._watch = threading.Thread(target=self._watch_loop, daemon=True)
+
+    def start(self, name: str, args: Sequence[str]) -> None:
+        """Start an instance in a session of its own: a Ctrl-C reaches only bringup."""
+        self._processes[name] = subprocess.Popen(
+            list(args), stdin=subprocess.DEVNULL, start_new_session=True)
+
+    def watch(self) -> None:
+        """Start watching the processes."""
+        self._watch.start()
+
+    def ended(self, name: str) -> bool:
+        """Tell whether the process of an instance has ended."""
+        return self._processes[name].poll() is not None
+
+    def _watch_loop(self) -> None:
+        reported: Dict[str, subprocess.Popen[bytes]] = {}
+        while not self._stopping.wait(0.1):
+            for name, process in list(self._processes.items()):
+                code = process.poll()
+                # a process started again is watched again
+                if code is not None and reported.get(name) is not process:
+                    reported[name] = process
+                    self._on_exit(name, code)
+
+    def stop(self, timeout: float = STOP_TIMEOUT) -> None:
+        """Ask every process to end (SIGINT), then kill what is left after timeout."""
+        self._stopping.set()
+        for process in self._processes.values():
+            if process.poll() is None:
+                try:
+                    os.killpg(process.pid, signal.SIGINT)
+                except ProcessLookupError:
+                    pass
+        deadline = time.monotonic() + timeout
+        for process in self._processes.values():
+            try:
+                process.wait(max(0.0, deadline - time.monotonic()))
+            except subprocess.TimeoutExpired:
+                self.kill()
+
+    def kill(self) -> None:
+        """End every process at once."""
+        self._stopping.set()
+        for process in self._processes.values():
+            try:
+                os.killpg(process.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+
+
+def node_arguments(instance: Dict[str, Any], params_file: str) -> List[str]:
+    """Return the ROS arguments of the node of an instance (remappings, parameters)."""
+    args = ['--params-file', params_file]
+    for source, target in instance['remappings']:
+        args += ['-r', f'{source}:={target}']
+    return args
+
+
+#: group name -> (its instances, its command line)
+Groups = Dict[str, Tuple[List[str], List[str]]]
+
+
+def plan_processes(description: Dict[str, Any], description_file: str, params_file: str,
+                   host: str = '', shared: Optional[bool] = None) -> Groups:
+    """
+    Return the processes that run the instances of a host ('' for the manager's).
+
+    :param shared: whether the Python instances share one process; by
+        default what the model says (``processes: shared``)
+    """
+    if shared is None:
+        shared = description.get('processes') == 'shared'
+    groups: Groups = {}
+    together = []
+    for instance in description['instances']:
+        if instance.get('host', '') != host:
+            continue
+        if shared and instance.get('python_class') and not instance.get('command'):
+            together.append(instance['instance'])
+        else:
+            groups[instance['instance']] = (
+                [instance['instance']], command(instance, params_file))
+    if together:
+        groups['python instances' + (f' on {host}' if host else '')] = (together, [
+            sys.executable, '-m', 'robmosys_runtime.container', description_file,
+            params_file, *together])
+    return groups
