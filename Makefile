@@ -3,8 +3,9 @@
 #   make test   run the test suite (PYTEST_ARGS='-k foo' to narrow it)
 #   make demo   run tools/demo.py
 #   make clean  remove the venv and the test workspace's build results
-#   make bench  run the three benchmarks of bench/ (or one: make bench-generation,
-#               bench-colcon, bench-runtime; BENCH_ARGS='--help' shows their options)
+#   make bench  run the four benchmarks of bench/ (or one: make bench-generation,
+#               bench-colcon, bench-runtime, bench-bringup; BENCH_ARGS='--help' shows
+#               their options)
 
 PYTHON ?= python3
 PYTEST_ARGS ?=
@@ -21,7 +22,7 @@ ifeq ($(CI),true)
 PYTEST_FLAGS := -p no:cacheprovider
 endif
 
-.PHONY: venv demo test clean bench bench-generation bench-colcon bench-runtime
+.PHONY: venv demo test clean bench bench-generation bench-colcon bench-runtime bench-bringup
 
 venv: $(VENV)/.stamp-package
 
@@ -60,10 +61,10 @@ test: venv
 # Each benchmark prints ratios measured in one run; docs/performance.md keeps the
 # latest figures. bench/ is run as scripts, so the installed package is the one measured.
 BENCH_ARGS ?=
-bench-generation bench-colcon bench-runtime: bench-%: venv
+bench-generation bench-colcon bench-runtime bench-bringup: bench-%: venv
 	$(VPY) bench/bench_$*.py $(BENCH_ARGS)
 
-bench: bench-generation bench-colcon bench-runtime
+bench: bench-generation bench-colcon bench-runtime bench-bringup
 
 clean:
 	rm -rf $(VENV) $(SETUPTOOLS_LEFTOVERS) test_workspace/build test_workspace/install \

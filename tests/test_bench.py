@@ -20,6 +20,7 @@ import pytest
 BENCH = Path(__file__).resolve().parent.parent / 'bench'
 sys.path.insert(0, str(BENCH))
 
+import bench_bringup  # noqa: E402
 import bench_colcon  # noqa: E402
 import bench_generation  # noqa: E402
 import bench_runtime  # noqa: E402
@@ -92,6 +93,18 @@ def test_runtime_benchmark_prints_ratios(capsys):
         assert received and int(received.group(1)) >= 2, out
     assert len(re.findall(rf'^\| throughput .* {RATIO} +\|', out, re.MULTILINE)) == 4, out
     assert 'C++: skipped: ' in out
+
+
+@requires_ros
+def test_bringup_benchmark_prints_ratios_and_counts_hangs(capsys):
+    """Every system of the bring-up benchmark comes up, in both layouts."""
+    assert bench_bringup.main(['--sizes', '4', '--rounds', '1', '--hang-runs', '2',
+                               '--hang-size', '2', '--timeout', '90']) == 0
+    out = capsys.readouterr().out
+    assert len(re.findall(r'round 1, .*: up in', out)) == 4, out
+    assert len(re.findall(rf'^\| 4 instances +\| (per-instance|shared) .* {RATIO} +\|', out,
+                          re.MULTILINE)) == 2, out
+    assert '2 bring-ups in a row of 2 instances (per-instance): 2 up, 0 failed, 0 hung' in out
 
 
 def test_cpp_pairs_are_skipped_without_rclcpp_and_run_with_it(tmp_path):

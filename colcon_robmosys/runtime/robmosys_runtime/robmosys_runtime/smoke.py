@@ -70,7 +70,7 @@ class _Probe:
 
     def call(self, name: str, srv_type: Any, request: Any, timeout: float) -> Optional[Any]:
         """Call a service; return its answer, or None if none came within timeout."""
-        client = self._node.create_client(srv_type, name)
+        client: Any = self._node.create_client(srv_type, name)
         try:
             deadline = time.monotonic() + timeout
             while time.monotonic() < deadline:

@@ -1,0 +1,209 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""Benchmark 4: how long a system takes to come up, against its slowest single instance.
+
+Builds one system of Python components with colcon in a temporary workspace:
+``--sizes`` (largest) instances, half of them publishers at 10 Hz, half
+subscribers, wired in pairs. ``ros2 run <system> bringup`` (the system manager of
+robmosys_runtime) then brings up, in alternation and in the same run:
+
+- each single instance alone (a publisher, a subscriber): the slowest of them is
+  the reference, what a bring-up can at best cost;
+- the first N instances of the system, for each N of ``--sizes``, with one process
+  per instance and with the Python instances sharing one process
+  (``processes: shared``).
+
+Each time is from the start of ``bringup`` to its report that every managed
+instance is active. Prints each time / the slowest single instance's, the
+ratio issue 16 and issue 14 set the goal for (within 1.5x at 20 and at 50).
+Then ``--hang-runs`` bring-ups in a row of the system of ``--hang-size`` instances,
+each with a timeout: how many came up, failed, or hung.
+
+    make bench-bringup                    # or: .venv/bin/python bench/bench_bringup.py
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+from pathlib import Path
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from typing import Sequence
+
+import yaml
+
+from benchlib import best, print_end, print_machine, ratio, spread, table
+from colcon_robmosys.devtools import ros_env
+
+SYSTEM = 'bench_bringup_system'
+METADATA = {'license': 'Apache-2.0',
+            'maintainers': [{'name': 'Benchmark Team', 'email': 'bench@example.com'}]}
+BEAT = {
+    'name': 'Beat', 'package': 'bench_beat', 'language': 'python',
+    'ports': {'pBeat': {'pattern': 'push', 'role': 'provided', 'type': 'std_msgs/msg/Header'}},
+    'activities': {'Publish': {'period': 0.1, 'functions': ['fPublish']}},
+    'functions': {'fPublish': {'code': 'self.pBeat.publish(Header(frame_id="beat"))\n'}},
+}
+HEAR = {
+    'name': 'Hear', 'package': 'bench_hear', 'language': 'python',
+    'ports': {'rBeat': {'pattern': 'push', 'role': 'required', 'type': 'std_msgs/msg/Header'}},
+    'activities': {'Receive': {'trigger': 'rBeat', 'functions': ['fReceive']}},
+    'functions': {'fReceive': {'code': 'self.heard = getattr(self, "heard", 0) + 1\n'}},
+}
+
+
+def write_workspace(src: Path, instances: int) -> None:
+    """Write the two components and a system of ``instances`` instances (pairs)."""
+    for model in (BEAT, HEAR):
+        path = src / str(model['package']) / 'robmosys.yaml'
+        path.parent.mkdir(parents=True)
+        path.write_text(yaml.safe_dump({'robmosys': 1, 'defaults': METADATA,
+                                        'components': [model]}, sort_keys=False))
+    pairs = (instances + 1) // 2
+    system = {
+        'package': SYSTEM,
+        'instances': {**{f'beat_{i}': {'component': 'bench_beat'} for i in range(pairs)},
+                      **{f'hear_{i}': {'component': 'bench_hear'} for i in range(pairs)}},
+        'connections': [{'from': f'beat_{i}.pBeat', 'to': f'hear_{i}.rBeat'}
+                        for i in range(pairs)]}
+    path = src / SYSTEM / 'robmosys.yaml'
+    path.parent.mkdir(parents=True)
+    path.write_text(yaml.safe_dump({'robmosys': 1, 'defaults': METADATA,
+                                    'systems': [system]}, sort_keys=False))
+
+
+def build(root: Path) -> Path:
+    """Build the workspace with colcon; return the install folder."""
+    env = ros_env.loopback_env(ros_env.free_domain_id())
+    result = ros_env.run([str(Path(sys.prefix) / 'bin' / 'colcon'), 'build'],
+                         env=env, cwd=root, timeout=1800)
+    if result.returncode:
+        raise RuntimeError(f'colcon build failed:\n{result.stdout}{result.stderr}')
+    return root / 'install'
+
+
+def subset(install: Path, names: Sequence[str], dest: Path) -> Path:
+    """Write the system's description with some instances only; return its path."""
+    description = json.loads((install / SYSTEM / 'share' / SYSTEM / 'bringup.json').read_text())
+    description['instances'] = [i for i in description['instances'] if i['instance'] in names]
+    description['connections'] = []
+    dest.write_text(json.dumps(description))
+    return dest
+
+
+def bring_up(install: Path, description: Path, layout: str, count: int,
+             timeout: float) -> tuple[str, float]:
+    """
+    Bring a system up and down once; return the outcome and the seconds it took to come up.
+
+    The outcome is ``up``, ``failed`` (bringup reported a failure) or ``hung``
+    (no report within timeout).
+    """
+    env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
+    executable = install / SYSTEM / 'lib' / SYSTEM / 'bringup'
+    done = f'bringup: {count} of {count} managed instances active'
+    with tempfile.TemporaryFile() as log:
+        start = time.monotonic()
+        process = subprocess.Popen(
+            [sys.executable, str(executable), '--description', str(description),
+             f'--{layout}', '--timeout', str(timeout)],
+            env=env, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+            start_new_session=True)
+        outcome, took = 'hung', timeout
+        try:
+            while time.monotonic() - start < timeout:
+                output = os.pread(log.fileno(), os.fstat(log.fileno()).st_size, 0).decode(
+                    errors='replace')
+                if done in output:
+                    outcome, took = 'up', time.monotonic() - start
+                    break
+                if 'managed instances active' in output or process.poll() is not None:
+                    outcome, took = 'failed', time.monotonic() - start
+                    break
+                time.sleep(0.02)
+        finally:
+            if process.poll() is None:
+                os.killpg(process.pid, signal.SIGINT)
+                try:
+                    process.wait(60)
+                except subprocess.TimeoutExpired:
+                    os.killpg(process.pid, signal.SIGKILL)
+                    process.wait()
+                    outcome = 'hung'
+    return outcome, took
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the benchmark and print its figures."""
+    parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    parser.add_argument('--sizes', type=int, nargs='+', default=[20, 50],
+                        help='instances of the systems brought up (default: 20 50)')
+    parser.add_argument('--rounds', type=int, default=3,
+                        help='bring-ups of each system and layout; the fastest counts')
+    parser.add_argument('--hang-runs', type=int, default=30,
+                        help='bring-ups in a row of the --hang-size system (default: 30)')
+    parser.add_argument('--hang-size', type=int, default=20)
+    parser.add_argument('--hang-layout', choices=('per-instance', 'shared'),
+                        default='per-instance')
+    parser.add_argument('--timeout', type=float, default=120.0,
+                        help='seconds a bring-up may take before it counts as hung')
+    args = parser.parse_args(argv)
+    print_machine('bring-up: N instances vs the slowest single instance, one run')
+    largest = max(args.sizes + [args.hang_size])
+    with tempfile.TemporaryDirectory(prefix='robmosys-bench-bringup-') as tmp:
+        root = Path(tmp)
+        write_workspace(root / 'src', largest)
+        install = build(root)
+        names = [f'{kind}_{i}' for i in range((largest + 1) // 2) for kind in ('beat', 'hear')]
+        cases: dict[tuple[str, str], tuple[Path, int]] = {
+            ('single publisher', 'per-instance'): (subset(install, ['beat_0'],
+                                                          root / 'beat.json'), 1),
+            ('single subscriber', 'per-instance'): (subset(install, ['hear_0'],
+                                                           root / 'hear.json'), 1)}
+        for size in args.sizes:
+            path = subset(install, names[:size], root / f'system_{size}.json')
+            for layout in ('per-instance', 'shared'):
+                cases[(f'{size} instances', layout)] = (path, size)
+        times: dict[tuple[str, str], list[float]] = {case: [] for case in cases}
+        for round_ in range(args.rounds):
+            order = list(cases)[::1 if round_ % 2 == 0 else -1]
+            for case in order:
+                path, count = cases[case]
+                outcome, took = bring_up(install, path, case[1], count, args.timeout)
+                print(f'  round {round_ + 1}, {case[0]}, {case[1]}: {outcome} in {took:.2f} s',
+                      flush=True)
+                if outcome == 'up':
+                    times[case].append(took)
+        singles = [best(times[c]) for c in cases if c[0].startswith('single') and times[c]]
+        reference = max(singles) if singles else float('nan')
+        rows = [(name, layout, len(times[(name, layout)]),
+                 f'{best(times[(name, layout)]):.2f}' if times[(name, layout)] else '-',
+                 ratio(best(times[(name, layout)]), reference) if times[(name, layout)]
+                 else '-') for name, layout in cases]
+        print('time to all-active / the slowest single instance')
+        print(table(('system', 'processes', 'runs up', 'fastest s', 'ratio to slowest single'),
+                    rows))
+        print('spread (s):')
+        for case, samples in times.items():
+            if samples:
+                print(f'  {case[0]}, {case[1]}: {spread(samples)}')
+        hang_path = subset(install, names[:args.hang_size], root / 'hang.json')
+        outcomes: dict[str, int] = {'up': 0, 'failed': 0, 'hung': 0}
+        for _ in range(args.hang_runs):
+            outcome, _ = bring_up(install, hang_path, args.hang_layout, args.hang_size,
+                                  args.timeout)
+            outcomes[outcome] += 1
+        print(f'{args.hang_runs} bring-ups in a row of {args.hang_size} instances '
+              f'({args.hang_layout}): {outcomes["up"]} up, {outcomes["failed"]} failed, '
+              f'{outcomes["hung"]} hung (timeout {args.timeout:g} s)')
+    print_end()
+    return 0
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())
