@@ -160,8 +160,16 @@ def test_activate_file_follows_the_activation_model(generated, launch_file):
     """<system>[.<instance>].launch.py manages the instances with activate: true, in order."""
     package, name = launch_file.split('/')
     system = _system(package)
-    activate_after = read_activate_after(generated / package / 'launch' / name)
     instance = _instance_of(name)
+    if instance is None:
+        # the system's own file: the system manager brings it up, from bringup.json
+        source = (generated / package / 'launch' / name).read_text()
+        assert "executable='bringup',\n            arguments=['--attach']," in source
+        description = json.loads((generated / package / 'bringup.json').read_text())
+        activate_after = {i['instance']: i['after'] for i in description['instances']
+                          if i['managed']}
+    else:
+        activate_after = read_activate_after(generated / package / 'launch' / name)
     managed = [i for i in system.instances if i.activate and instance in (None, i.name)]
     in_file = {i.name for i in managed}
     # a file waits only for the instances it activates itself
@@ -232,18 +240,19 @@ def test_diagram_shows_instances_ports_and_typed_connections(generated, package)
 
 
 def test_activate_file_drives_the_managed_instances_by_their_node_names(generated):
-    """The launch file hands SystemActivation the managed instances and their order.
+    """An instance's launch file hands SystemActivation the instance and its order.
 
     What SystemActivation does with them (levels, failures reported with what
     they hold back, timeouts) is tested on rclpy with the runtime
-    (robmosys_runtime/test/test_activation.py).
+    (robmosys_runtime/test/test_activation.py); the system's own file runs the
+    manager, tested in tests/test_bringup.py.
     """
-    source = activate_launch_file(generated / 'dummy_robot_bringup').read_text()
+    source = activate_launch_file(generated / 'dummy_robot_bringup', 'monitor').read_text()
     tree = ast.parse(source)
     tables = {ast.unparse(n.targets[0]): ast.literal_eval(n.value) for n in tree.body
               if isinstance(n, ast.Assign)}
     system = _system('dummy_robot_bringup')
-    managed = [i for i in system.instances if i.activate]
+    managed = [i for i in system.instances if i.activate and i.name == 'monitor']
     assert tables['NODES'] == {i.name: f'{i.namespace}/{i.name}' for i in managed}
     assert set(tables['ACTIVATE_AFTER']) == set(tables['NODES'])
     assert 'SystemActivation(get_ros_node(context), NODES, ACTIVATE_AFTER' in source
@@ -355,8 +364,8 @@ def test_a_system_on_two_hosts_has_launch_files_per_host(tmp_path):
     # the manager's files start the instances of no host, and activate every one
     assert [n.name for n in read_launch_file(launch / 'hosted_system.nodes.launch.py', out)] \
         == ['planner']
-    assert read_activate_after(launch / 'hosted_system.launch.py') == {
-        'arm': [], 'planner': ['arm']}
+    assert "executable='bringup'" in (launch / 'hosted_system.launch.py').read_text()
+    assert read_activate_after(launch / 'hosted_system.on_robot.launch.py') == {'arm': []}
     assert [n.name for n in read_launch_file(
         launch / 'hosted_system.on_robot.nodes.launch.py', out)] == ['arm']
     description = json.loads((out / 'bringup.json').read_text())

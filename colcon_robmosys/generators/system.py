@@ -14,7 +14,8 @@ from colcon_robmosys.mapping.system import PARAMS_FILE, SystemPackage
 #: template -> output path, once per launch file (all instances, then each)
 LAUNCH_FILES = (
     Row('launch/{nodes_file}', 'system/launch.py.jinja'),
-    Row('launch/{activate_file}', 'system/activate.py.jinja'),
+    Row('launch/{activate_file}', 'system/activate.py.jinja', when='activates_itself'),
+    Row('launch/{activate_file}', 'system/manage.launch.py.jinja', when='has_manager'),
     # the names of the last release, kept for one more
     Row('launch/launch{suffix}.py', 'system/alias.launch.py.jinja', part='nodes_alias',
         when='has_aliases'),

@@ -95,6 +95,16 @@ class LaunchFile:
         return f'{self.stem}.nodes.launch.py'
 
     @property
+    def has_manager(self) -> bool:
+        """Tell whether the file starts the system manager: the system's own file does."""
+        return self.suffix == ''
+
+    @property
+    def activates_itself(self) -> bool:
+        """Tell whether the file activates its instances itself (one instance, a host)."""
+        return not self.has_manager
+
+    @property
     def has_aliases(self) -> bool:
         """Tell whether the last release had the file: the files of hosts are new."""
         return not self.suffix.startswith('.on_')

@@ -21,12 +21,14 @@ import argparse
 import json
 import os
 import signal
+import sys
 import threading
 from typing import Any, Dict, Optional, Sequence
 
 from ament_index_python.packages import get_package_share_directory
 import rclpy
 from rclpy.executors import MultiThreadedExecutor
+from rclpy.utilities import remove_ros_args
 from robmosys_runtime.manager import Manager, report, say
 from robmosys_runtime.processes import plan_processes, Processes
 
@@ -51,6 +53,10 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
                         help='seconds before an instance marked respawn is started again')
     parser.add_argument('--diagnostics-period', type=float, default=1.0, metavar='SECONDS',
                         help='seconds between two publications on /diagnostics')
+    parser.add_argument('--attach', action='store_true',
+                        help='start no instance (ros2 launch starts them): only bring the '
+                        'system up, serve operators, and on Ctrl-C end without bringing '
+                        'it down (the launch ends the instances)')
     parser.add_argument('--host', metavar='HOST',
                         help='start only the instances the model puts on this host, and '
                         'leave bringing them up to the manager (bringup without --host)')
@@ -61,7 +67,8 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     layout.add_argument('--per-instance', dest='processes', action='store_false',
                         help='run every instance in a process of its own')
     parser.add_argument('--description', default=description_file, help=argparse.SUPPRESS)
-    args = parser.parse_args(argv)
+    # ros2 launch may hand the manager ROS arguments: rclpy reads those
+    args = parser.parse_args(remove_ros_args(list(sys.argv[1:] if argv is None else argv)))
     with open(args.description, encoding='utf-8') as stream:
         description = json.load(stream)
     package = description['package']
@@ -103,8 +110,9 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
         while not signalled.wait(0.5):
             pass
         manager.activation.stop()
-        for step in manager.activation.bring_down(timeout=min(args.timeout, 10.0)):
-            print(f'bringup: {step}', flush=True)
+        if not args.attach:
+            for step in manager.activation.bring_down(timeout=min(args.timeout, 10.0)):
+                print(f'bringup: {step}', flush=True)
     finally:
         manager.processes.stop()
         executor.shutdown()

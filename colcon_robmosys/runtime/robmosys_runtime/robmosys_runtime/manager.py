@@ -61,8 +61,8 @@ class Manager:
         self._args = args
         self.instances = {i['instance']: i for i in description['instances']}
         #: process name -> (its instances, its command line), of the manager's host
-        self.groups = plan_processes(description, args.description, params_file,
-                                     shared=args.processes)
+        self.groups = {} if args.attach else plan_processes(
+            description, args.description, params_file, shared=args.processes)
         self._group_of = {n: g for g, (names, _) in self.groups.items() for n in names}
         managed = {n: i['fqn'] for n, i in self.instances.items() if i['managed']}
         self.managed = managed
