@@ -10,6 +10,7 @@ and exits 0. Its description (``bringup.json``) is the system model's.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 from pathlib import Path
@@ -378,3 +379,27 @@ def test_a_host_without_instances_is_an_error(test_workspace_built):
         assert bringup.proc.wait(timeout=60) == 1, bringup.output()
         assert 'bringup: error: no instance of the system runs on the host nowhere' in \
             bringup.output()
+
+
+def test_attached_the_manager_brings_up_nodes_it_did_not_start(test_workspace_built):
+    """What <system>.launch.py runs: the nodes started by the launch, the manager attached."""
+    from colcon_robmosys.devtools.system import nodes_launch_file, read_launch_file
+    share = test_workspace_built.share(SYSTEM)
+    nodes = read_launch_file(nodes_launch_file(share), share)
+    domain_id = free_domain_id()
+    env = test_workspace_built.env(domain_id)
+    with contextlib.ExitStack() as stack:
+        started = [stack.enter_context(background(n.command(test_workspace_built.install),
+                                                  env=env)) for n in nodes]
+        driver = stack.enter_context(LifecycleDriver(domain_id))
+        # ros2 launch hands its executables ROS arguments: the manager takes them
+        with _bringup(test_workspace_built, '--attach', '--ros-args', '--log-level', 'info',
+                      domain_id=domain_id) as bringup:
+            assert wait_until(lambda: _all_up(bringup), timeout=90), bringup.output()
+            assert _trigger(driver, 'report').success
+            bringup.proc.send_signal(signal.SIGINT)
+            assert bringup.proc.wait(timeout=30) == 0, bringup.output()
+            assert 'bringup: deactivate' not in bringup.output(), bringup.output()
+        # ending the nodes is the launch's: they are still there, and active
+        assert driver.state('/examples/add_server') == 'active'
+        assert all(p.proc.poll() is None for p in started)
