@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+from pathlib import Path
 import re
 import signal
 import sys
@@ -314,3 +315,49 @@ def test_a_second_signal_ends_a_cpp_node_promptly(test_workspace_built):
         process.send_signal(signal.SIGINT)
         process.wait(timeout=10)
         assert 'terminate called' not in out['cpp_pub'].output()
+
+
+@requires_rclcpp
+def test_a_shared_system_runs_its_cpp_instances_in_one_container(
+        test_workspace_built, domain_id):
+    """With bringup --shared, the C++ instances run in one component container.
+
+    The Python ones share one process; parameters of the system's file reach
+    the nodes the container loads.
+    """
+    from colcon_robmosys.devtools.ros_env import background
+    instances = [i.name for i in _model_system().instances]
+    executable = test_workspace_built.install / SYSTEM / 'lib' / SYSTEM / 'bringup'
+    with background([sys.executable, str(executable), '--shared'],
+                    env=test_workspace_built.env(domain_id), stop_timeout=30) as bringup, \
+            LifecycleDriver(domain_id) as driver:
+        done = f'bringup: {len(instances)} of {len(instances)} managed instances active'
+        assert wait_until(lambda: done in bringup.output(), timeout=120), bringup.output()
+        # C++ -> Python and Python -> C++, across the two shared processes
+        assert wait_until(lambda: len(MAPS.findall(bringup.output())) >= 2, timeout=30), \
+            bringup.output()
+        assert driver.parameters('/sender', ['width']) == {'width': 5}
+        containers = [p for p in Path('/proc').iterdir() if p.name.isdigit() and
+                      b'__node:=mixed_system_container' in _cmdline(p)]
+        assert len(containers) == 1, containers
+        assert not [p for p in Path('/proc').iterdir() if p.name.isdigit() and
+                    b'__node:=cpp_pub' in _cmdline(p)]
+        bringup.proc.send_signal(signal.SIGINT)
+        assert bringup.proc.wait(timeout=60) == 0, bringup.output()
+        assert 'Traceback' not in bringup.output(), bringup.output()
+
+
+def _cmdline(proc: Path) -> bytes:
+    try:
+        return (proc / 'cmdline').read_bytes()
+    except OSError:
+        return b''
+
+
+def _model_system():
+    from colcon_robmosys.check import find_model_files, load_workspace
+    from colcon_robmosys.check.index import InterfaceIndex
+    from conftest import TEST_WORKSPACE
+    result = load_workspace(find_model_files([TEST_WORKSPACE / 'src']),
+                            InterfaceIndex([Path(sys.prefix)]))
+    return result.workspace.model(SYSTEM)

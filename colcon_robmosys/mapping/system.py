@@ -46,6 +46,8 @@ class SystemNode:
     host: str = ''
     #: module:class of a Python component (``bringup`` runs shared processes with it)
     python_class: str = ''
+    #: the rclcpp_components plugin of a C++ component (its shared container loads it)
+    plugin: str = ''
 
 
 @dataclass(frozen=True)
@@ -196,7 +198,8 @@ class SystemPackage:
             'name': n.name, 'namespace': n.namespace, 'fqn': n.fqn,
             'remappings': [list(r) for r in n.remappings], 'managed': n.activate,
             'after': list(n.after), 'respawn': n.respawn, 'timeout': n.timeout,
-            'host': n.host, 'python_class': n.python_class} for n in self.nodes]
+            'host': n.host, 'python_class': n.python_class, 'plugin': n.plugin}
+            for n in self.nodes]
         connections = [{'name': c.name, 'entity': c.entity, 'type': c.type,
                         'from': c.source, 'to': c.target} for c in self.connections]
         return json.dumps({'generated_by': ' '.join(self.banner.lines),
@@ -232,15 +235,19 @@ def _node(instance: Instance, component: Component,
         activate=instance.activate, after=instance.after,
         fqn=node_fqn(instance), respawn=instance.respawn, timeout=instance.timeout,
         host=instance.host,
-        python_class=_python_class(component))
+        **_in_process(component))
 
 
-def _python_class(component: Component) -> str:
-    """Return module:class of the node a Python component's executable runs."""
-    if component.language is not Language.PYTHON:
-        return ''
+def _in_process(component: Component) -> dict[str, str]:
+    """Return how a process of several instances creates the node of a component.
+
+    Python: module:class of the node its executable runs; C++: the
+    rclcpp_components plugin its package registers (component.cpp.jinja).
+    """
     plan = plan_component(component)
-    return f'{plan.package}.{plan.node_module}:{plan.node_cls}'
+    if component.language is Language.PYTHON:
+        return {'python_class': f'{plan.package}.{plan.node_module}:{plan.node_cls}'}
+    return {'plugin': f'{plan.package}::{plan.node_cls}'}
 
 
 def _launch_files(system: System, nodes: tuple[SystemNode, ...],

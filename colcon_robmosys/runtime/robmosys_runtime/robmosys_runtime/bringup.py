@@ -129,7 +129,7 @@ def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file:
     marked respawn are started again here, and its heartbeat brings them back.
     """
     groups = plan_processes(description, args.description, params_file, host=args.host,
-                            shared=args.processes)
+                            shared=args.processes, containers=False)
     if not groups:
         say('error', f'no instance of the system runs on the host {args.host}')
         return 1

@@ -21,7 +21,8 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.node import Node
 from robmosys_runtime.activation import Outcome, SystemActivation
-from robmosys_runtime.processes import plan_processes, Processes
+from robmosys_runtime.loading import load_into
+from robmosys_runtime.processes import container_node, CPP_GROUP, plan_processes, Processes
 from std_srvs.srv import Trigger
 
 
@@ -59,6 +60,7 @@ class Manager:
         self.node = node
         self.description = description
         self._args = args
+        self._params_file = params_file
         self.instances = {i['instance']: i for i in description['instances']}
         #: process name -> (its instances, its command line), of the manager's host
         self.groups = {} if args.attach else plan_processes(
@@ -92,8 +94,24 @@ class Manager:
         """Start the processes of this host and bring every managed instance up."""
         for group, (_, args) in self.groups.items():
             self.processes.start(group, args)
+            if group == CPP_GROUP:
+                self._load(group)
         self.processes.watch()
         self.activation.start()
+
+    def _load(self, group: str) -> None:
+        """Load the C++ instances into their container, in the background."""
+        def load() -> None:
+            container = '/' + container_node(self.description['package'])
+            failed = load_into(self.node, container,
+                               [self.instances[n] for n in self.groups[group][0]],
+                               self._params_file, self._args.start_timeout)
+            for name, why in sorted(failed.items()):
+                if name in self.managed:
+                    self.activation.instance_failed(name, why)
+                else:
+                    say('error', f'instance {name} {why}')
+        threading.Thread(target=load, daemon=True, name=f'load {group}').start()
 
     # what operators see
 
@@ -194,6 +212,8 @@ class Manager:
             return
         names, args = self.groups[group]
         self.processes.start(group, args)
+        if group == CPP_GROUP:
+            self._load(group)
         for name in names:
             if name in self.managed and self.up:
                 # brought back to the state of the system, with what it held back

@@ -106,23 +106,39 @@ def node_arguments(instance: Dict[str, Any], params_file: str) -> List[str]:
 Groups = Dict[str, Tuple[List[str], List[str]]]
 
 
+#: the group of the C++ instances in a shared component container
+CPP_GROUP = 'C++ instances'
+
+
+def container_node(package: str) -> str:
+    """Return the node name of the component container of a system's C++ instances."""
+    return f'{package}_container'
+
+
 def plan_processes(description: Dict[str, Any], description_file: str, params_file: str,
-                   host: str = '', shared: Optional[bool] = None) -> Groups:
+                   host: str = '', shared: Optional[bool] = None,
+                   containers: bool = True) -> Groups:
     """
     Return the processes that run the instances of a host ('' for the manager's).
 
-    :param shared: whether the Python instances share one process; by
-        default what the model says (``processes: shared``)
+    :param shared: whether the Python instances share one process, and the
+        C++ ones one component container; by default what the model says
+        (``processes: shared``)
+    :param containers: whether C++ instances may share a container (the
+        manager loads them into it: ``CPP_GROUP``)
     """
     if shared is None:
         shared = description.get('processes') == 'shared'
     groups: Groups = {}
     together = []
+    loaded = []
     for instance in description['instances']:
         if instance.get('host', '') != host:
             continue
         if shared and instance.get('python_class') and not instance.get('command'):
             together.append(instance['instance'])
+        elif shared and containers and instance.get('plugin') and not instance.get('command'):
+            loaded.append(instance['instance'])
         else:
             groups[instance['instance']] = (
                 [instance['instance']], command(instance, params_file))
@@ -130,4 +146,10 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
         groups['python instances' + (f' on {host}' if host else '')] = (together, [
             sys.executable, '-m', 'robmosys_runtime.container', description_file,
             params_file, *together])
+    if loaded:
+        # rclcpp_components' multi-threaded container; the manager loads the nodes
+        groups[CPP_GROUP] = (loaded, [
+            os.path.join(get_package_prefix('rclcpp_components'), 'lib', 'rclcpp_components',
+                         'component_container_mt'),
+            '--ros-args', '-r', f"__node:={container_node(description['package'])}"])
     return groups
