@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import contextlib
 import re
+import shutil
 import signal
 import sys
 
@@ -17,7 +18,7 @@ import pytest
 
 from colcon_robmosys.devtools.ros_env import background
 from colcon_robmosys.devtools.system import wait_until
-from conftest import requires_ros
+from conftest import BuiltWorkspace, requires_ros
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
@@ -133,3 +134,43 @@ def test_ctrl_c_of_a_system_reports_no_failure(test_workspace_built, launch_env)
     assert 'instance' not in output.split('SIGINT')[-1], output
     assert 'Traceback' not in output, output
     assert 'finalized' not in output, output
+
+
+@pytest.fixture(scope='module')
+def hosted_built(tmp_path_factory) -> BuiltWorkspace:
+    """Return test_workspace with pubsub_system's publisher on a host of its own."""
+    from conftest import build_workspace, TEST_WORKSPACE
+    src = tmp_path_factory.mktemp('hosted_src') / 'src'
+    shutil.copytree(TEST_WORKSPACE / 'src', src, ignore=shutil.ignore_patterns('__pycache__'))
+    model = src / 'pubsub_system' / 'robmosys.yaml'
+    text = model.read_text()
+    assert '      publisher:\n        component: publisher\n' in text
+    model.write_text(text.replace('      publisher:\n        component: publisher\n',
+                                  '      publisher:\n        component: publisher\n'
+                                  '        host: robot\n'))
+    return build_workspace(src, tmp_path_factory.mktemp('hosted_ws'),
+                           '--packages-up-to', 'pubsub_system')
+
+
+def test_two_hosts_as_two_launches_in_one_domain(hosted_built, domain_id):
+    """<system>.on_<host>.nodes.launch.py on the robot, <system>.launch.py with the manager."""
+    env = hosted_built.env(domain_id)
+    probe = __import__('subprocess').run(
+        [sys.executable, '-c', 'import launch_ros'], env=env, capture_output=True, timeout=60)
+    if probe.returncode != 0:
+        pytest.skip('launch_ros is not installed (it is not on PyPI)')
+    launch = hosted_built.share('pubsub_system') / 'launch'
+    with background([sys.executable, '-c', LAUNCHER,
+                     str(launch / 'pubsub_system.on_robot.nodes.launch.py')],
+                    env=env) as robot, \
+            background([sys.executable, '-c', LAUNCHER,
+                        str(launch / 'pubsub_system.launch.py')], env=env) as manager:
+        # the subscriber here receives from the publisher there, once the manager
+        # brought both up
+        assert wait_until(lambda: len(RECEIVED.findall(manager.output())) >= 2, timeout=60), \
+            manager.output() + robot.output()
+        assert 'bringup: 2 of 2 managed instances active' in manager.output()
+        for launched in (manager, robot):
+            launched.proc.send_signal(signal.SIGINT)
+            launched.proc.wait(timeout=30)
+        assert 'Traceback' not in manager.output() + robot.output()
