@@ -14,6 +14,7 @@ monitor), which needs rclcpp and skips with the reason where it is missing.
 from __future__ import annotations
 
 import contextlib
+import json
 from pathlib import Path
 import sys
 
@@ -24,8 +25,7 @@ from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.devtools.ros_env import background
 from colcon_robmosys.devtools.system import (
-    activate_launch_file, activation_waves, LifecycleDriver, nodes_launch_file,
-    read_activate_after, read_launch_file, wait_until)
+    activation_waves, LifecycleDriver, nodes_launch_file, read_launch_file, wait_until)
 from colcon_robmosys.model.types import Component, Instance, Language, System
 from conftest import requires_ros, TEST_WORKSPACE
 
@@ -91,7 +91,9 @@ def test_dummy_robot_comes_up_in_order_and_every_connection_carries_data(
     share = test_workspace_built.share(package)
     nodes = {n.name: n for n in read_launch_file(nodes_launch_file(share), share)}
     assert set(nodes) == {i.name for i in system.instances}
-    order = read_activate_after(activate_launch_file(share))
+    # what the system manager brings up (bringup.json), and in which order
+    description = json.loads((share / 'bringup.json').read_text(encoding='utf-8'))
+    order = {i['instance']: i['after'] for i in description['instances'] if i['managed']}
     # the map server comes first, the unmanaged spare laser not at all
     assert order['map_server'] == [] and 'laser_spare' not in order
     assert all('map_server' in after for name, after in order.items() if name != 'map_server')
@@ -119,7 +121,7 @@ def test_dummy_robot_comes_up_in_order_and_every_connection_carries_data(
 
         for name in order:
             assert driver.transition(nodes[name].fqn, 'configure'), output(name)
-        # activate.py's order: each instance once those it comes after are active
+        # the manager's order: each instance once those it comes after are active
         for wave in activation_waves(order):
             for name in wave:
                 for before in order[name]:

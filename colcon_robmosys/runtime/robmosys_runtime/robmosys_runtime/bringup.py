@@ -80,7 +80,8 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     node = rclpy.create_node(f'{package}_bringup')
     executor = MultiThreadedExecutor(num_threads=4)
     executor.add_node(node)
-    threading.Thread(target=executor.spin, daemon=True).start()
+    spinner = threading.Thread(target=executor.spin, daemon=True)
+    spinner.start()
     manager = Manager(node, description, params_file, args)
     signalled = threading.Event()
 
@@ -116,6 +117,9 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     finally:
         manager.processes.stop()
         executor.shutdown()
+        # a thread still in rcl when the process ends aborts it ("terminate called
+        # without an active exception"): the spinning thread ends first
+        spinner.join(10)
         node.destroy_node()
         rclpy.try_shutdown()
     return status if args.exit_on_failure else 0

@@ -141,9 +141,10 @@ def run(package: str, *, timeout: float = 30.0, bring_up_timeout: float = 120.0,
         finally:
             problems += _stop(manager)
             executor.shutdown()
+            # the spinning thread ends before the node and the context go
+            spinner.join(10)
             node.destroy_node()
             rclpy.try_shutdown(context=context)
-            spinner.join(10)
             if problems:
                 log.seek(0)
                 problems.append('what the system printed:\n' +
