@@ -8,34 +8,16 @@ Extra modules, a config file and pytest tests next to the model (docs/model-form
 
 from __future__ import annotations
 
-import contextlib
 from pathlib import Path
 import xml.etree.ElementTree as ET
 
 import pytest
+# the same component: its model, and how to see its node run
+from test_user_code import assert_echo_logs, MODEL
 
-from colcon_robmosys.devtools.ros_env import background, loopback_env, workspace_env
-from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
 from conftest import colcon, requires_ros
 
 pytestmark = [pytest.mark.integration, requires_ros]
-
-MODEL = """\
-robmosys: 1
-components:
-  - name: Echo
-    package: echo
-    language: python
-    license: Apache-2.0
-    maintainers: [{name: A, email: a@example.com}]
-    ports:
-      pOut: {pattern: push, role: provided, type: std_msgs/msg/String}
-    activities:
-      Tick: {period: 0.2, functions: [fTick]}
-    functions:
-      fTick:
-        description: Publish a text.
-"""
 
 IMPL = '''\
 """The user's implementation of Echo."""
@@ -126,14 +108,7 @@ def test_user_files_are_built_installed_and_tested(tmp_path, domain_id):
     assert not list(generated.glob('echo/Echo_impl.py'))
 
     # the node imports the user's module and uses it
-    env = workspace_env(install, loopback_env(domain_id))
-    with contextlib.ExitStack() as stack:
-        node = stack.enter_context(background(
-            [str(install / 'echo' / 'lib' / 'echo' / 'Echo')], env=env))
-        driver = stack.enter_context(LifecycleDriver(domain_id))
-        assert driver.transition('/Echo', 'configure')
-        assert driver.transition('/Echo', 'activate')
-        assert wait_until(lambda: 'hello from words' in node.output(), 10), node.output()
+    assert_echo_logs(install, domain_id, 'hello from words')
 
     # colcon test runs the user's tests and reports the failing one; flake8
     # points at the user's file where it lives

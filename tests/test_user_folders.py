@@ -85,7 +85,8 @@ def test_a_module_of_the_user_that_takes_a_generated_name_is_refused(tmp_path):
 def test_components_that_share_a_file_have_a_folder_each(tmp_path):
     plans = _plans(tmp_path, _component('Echo', 'echo'), _component('Talk', 'talk', 'cpp'))
     assert plans['echo'].user_folders == (
-        'src/echo', 'echo/include', 'echo/launch', 'echo/config', 'echo/resource', 'echo/test')
+        'src/echo', 'echo/include', 'echo/launch', 'echo/config', 'echo/resource', 'echo/test',
+        'echo/cmake')
     cmake = generate_package(plans['talk'], tmp_path / 'talk')
     text = (tmp_path / 'talk' / 'CMakeLists.txt').read_text()
     assert cmake.written
@@ -94,3 +95,7 @@ def test_components_that_share_a_file_have_a_folder_each(tmp_path):
     # a gtest of the user's links the component's library
     assert 'file(GLOB _user_gtests CONFIGURE_DEPENDS "${ROBMOSYS_USER_DIR}/test/*.cpp")' in text
     assert 'target_link_libraries(user_gtest ${PROJECT_NAME}_component)' in text
+    # the user's CMake code, after the component's target exists
+    assert text.index('file(GLOB _user_cmake CONFIGURE_DEPENDS '
+                      '"${ROBMOSYS_USER_DIR}/cmake/*.cmake")') > \
+        text.index('add_library(${PROJECT_NAME}_component SHARED')

@@ -12,8 +12,10 @@ directory of the model file:
 - the component's own folder: the model's directory when the component is
   the only one of its file, else the folder ``<package>/`` in it. Below it,
   ``include/`` (C++ headers, installed to ``include/<package>``), ``launch/``,
-  ``config/`` and ``resource/`` (installed to ``share/<package>/``) and
-  ``test/`` (the user's pytest and gtest tests, which ``colcon test`` runs).
+  ``config/`` and ``resource/`` (installed to ``share/<package>/``),
+  ``test/`` (the user's pytest and gtest tests, which ``colcon test`` runs)
+  and ``cmake/`` (``*.cmake`` files the package's CMakeLists.txt includes:
+  ``find_package`` of a system dependency, say).
 """
 
 from __future__ import annotations
@@ -28,6 +30,8 @@ SHARE_FOLDERS = ('launch', 'config', 'resource')
 TEST_FOLDER = 'test'
 #: The user's C++ headers for other packages.
 INCLUDE_FOLDER = 'include'
+#: The user's CMake code, included by the generated CMakeLists.txt.
+CMAKE_FOLDER = 'cmake'
 
 
 @dataclass(frozen=True)
@@ -50,7 +54,7 @@ class UserFolders:
         """Return every folder of the user's, relative to the model's directory."""
         return (self.code,) + tuple(
             self.own_prefix + name
-            for name in (INCLUDE_FOLDER, *self.share, TEST_FOLDER))
+            for name in (INCLUDE_FOLDER, *self.share, TEST_FOLDER, CMAKE_FOLDER))
 
 
 def user_folders(component: Component, workspace: Workspace | None = None
