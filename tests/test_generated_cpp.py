@@ -113,7 +113,10 @@ def test_layout_of_the_reference(generated_cpp):
     # the skeleton is regenerated but never built
     cmake = (generated_cpp / 'cpp_subscriber' / 'CMakeLists.txt').read_text()
     assert 'src-skel' not in cmake
-    assert 'src/cpp_subscriber/Subscriber_impl.cpp' in cmake
+    # the user's sources are compiled where they live: every .cpp below src/<package>
+    assert 'set(ROBMOSYS_USER_CODE "${ROBMOSYS_SOURCE_DIR}/src/cpp_subscriber")' in cmake
+    assert 'file(GLOB_RECURSE _user_sources CONFIGURE_DEPENDS ' \
+        '"${ROBMOSYS_USER_CODE}/*.cpp")' in cmake
     assert 'rclcpp_components_register_nodes(${PROJECT_NAME}_component ' \
         '"cpp_subscriber::Subscriber_impl")' in cmake
 

@@ -150,12 +150,12 @@ def test_stamps_skip_only_what_would_not_change(src, tmp_path, index):
     assert _generate_all(src, out, index)['generated'] == 1
     assert node.read_bytes() == expected
 
-    # the user's file, copied into the package
+    # the user's file, copied into the (standalone) package at its path
     impl = src / 'subscriber' / 'src' / 'subscriber' / 'Subscriber_impl.py'
     impl.write_bytes(impl.read_bytes() + b'\n# more of my work\n')
     counts = _generate_all(src, out, index)
     assert counts['generated'] == 1 and counts['written'] == 1
-    assert (out / 'subscriber' / 'subscriber' / 'Subscriber_impl.py').read_bytes() == \
+    assert (out / 'subscriber' / 'src' / 'subscriber' / 'Subscriber_impl.py').read_bytes() == \
         impl.read_bytes()
 
     # a model: its package and those that depend on it (the systems using it)

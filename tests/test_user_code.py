@@ -44,6 +44,18 @@ def _ok(result) -> None:
     assert result.returncode == 0, result.stdout + result.stderr
 
 
+def assert_echo_logs(install: Path, domain_id: int, text: str) -> None:
+    """Run the installed Echo, bring it up, and wait for it to log text."""
+    env = workspace_env(install, loopback_env(domain_id))
+    with contextlib.ExitStack() as stack:
+        node = stack.enter_context(background(
+            [str(install / 'echo' / 'lib' / 'echo' / 'Echo')], env=env))
+        driver = stack.enter_context(LifecycleDriver(domain_id))
+        assert driver.transition('/Echo', 'configure')
+        assert driver.transition('/Echo', 'activate')
+        assert wait_until(lambda: text in node.output(), 10), node.output()
+
+
 def test_user_code_survives_and_the_skeleton_follows_the_model(tmp_path, domain_id):
     model = tmp_path / 'src' / 'echo' / 'robmosys.yaml'
     model.parent.mkdir(parents=True)
@@ -68,15 +80,7 @@ def test_user_code_survives_and_the_skeleton_follows_the_model(tmp_path, domain_
     assert [p.read_bytes() for p in installed] == [mine]
 
     # and the node runs the user's code
-    install = tmp_path / 'install'
-    env = workspace_env(install, loopback_env(domain_id))
-    with contextlib.ExitStack() as stack:
-        node = stack.enter_context(background(
-            [str(install / 'echo' / 'lib' / 'echo' / 'Echo')], env=env))
-        driver = stack.enter_context(LifecycleDriver(domain_id))
-        assert driver.transition('/Echo', 'configure')
-        assert driver.transition('/Echo', 'activate')
-        assert wait_until(lambda: 'my edit runs' in node.output(), 10), node.output()
+    assert_echo_logs(tmp_path / 'install', domain_id, 'my edit runs')
 
     # the model gains a function: the skeleton shows it, the user's file is kept and
     # the build names what it lacks

@@ -92,6 +92,7 @@ class TypeRules(CheckContext):
                     not self.index.has_package(package):
                 self.error(location,
                            f"component '{component.name}' depends on "
-                           f"unknown package '{package}'")
+                           f"unknown package '{package}' (a rosdep key of a "
+                           "system dependency goes in 'system_depends')")
 
     # systems ------------------------------------------------------------

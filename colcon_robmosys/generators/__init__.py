@@ -25,7 +25,8 @@ from colcon_robmosys.generators.python import python_package
 from colcon_robmosys.generators.render import render
 from colcon_robmosys.generators.stamp import StampStore
 from colcon_robmosys.generators.system import system_package
-from colcon_robmosys.generators.usercode import check_user_file
+from colcon_robmosys.generators.usercode import (
+    check_user_file, merge_conflicts, user_tree)
 from colcon_robmosys.generators.writer import (
     create_user_file, GENERATED_MARKER, is_generated, read_current,
     remove_generated, remove_leftovers, sync_folders, write_generated)
@@ -34,6 +35,7 @@ from colcon_robmosys.mapping.cpp import spell_cpp
 from colcon_robmosys.mapping.interfaces import plan_interfaces
 from colcon_robmosys.mapping.python import spell_python
 from colcon_robmosys.mapping.system import plan_system
+from colcon_robmosys.mapping.userfiles import user_folders
 from colcon_robmosys.model.types import (
     Component, Language, ServiceDefinition, Workspace)
 
@@ -67,9 +69,11 @@ def plan_package(workspace: Workspace, package: str) -> PackagePlan:
         return interfaces_package(plan_interfaces(model), model_dir)
     if isinstance(model, Component):
         plan = plan_component(model)
+        folders = user_folders(model, workspace)
         if model.language is Language.PYTHON:
-            return python_package(spell_python(model, plan), model_dir)
-        return cpp_package(spell_cpp(model, plan), model_dir)
+            return python_package(spell_python(model, plan, folders),
+                                  model_dir)
+        return cpp_package(spell_cpp(model, plan, folders), model_dir)
     return system_package(plan_system(model, workspace), model_dir)
 
 
@@ -93,11 +97,17 @@ def create_missing_user_files(plan: PackagePlan) -> list[Path]:
 
 def generate_package(plan: PackagePlan, out_dir: Path, *,
                      sync: bool = False, stamps: StampStore | None = None,
-                     fingerprint: str = '') -> GenerationReport:
+                     fingerprint: str = '',
+                     standalone: bool = True) -> GenerationReport:
     """Write the package of a plan into out_dir.
 
     Everything is rendered and checked before the first file is written, so
     that a problem leaves the previous output as it was.
+
+    :param standalone: copy the user's files into the package, at their
+      paths next to the model, so that it builds on its own; without, the
+      build uses them where they are (``ROBMOSYS_SOURCE_DIR``, set by the
+      build task)
 
     :param sync: make every file written durable (fsync, then each folder
       once): for output a user keeps, not for the build tree
@@ -127,9 +137,15 @@ def generate_package(plan: PackagePlan, out_dir: Path, *,
         problems += found
         if shows_skeleton and user_file.skeleton_path in outputs:
             skeletons.append(user_file.skeleton_path)
-        data = source.read_bytes()
-        outputs[user_file.package_path] = (data, False)
-        copied[str(source)] = digest(data)
+        # checked with this content: a change checks it again
+        copied[str(source)] = digest(source.read_bytes())
+    problems += merge_conflicts(plan, outputs)
+    if standalone:
+        # stamps know the files copied, not those added since: they serve
+        # the build tree, where nothing of the user's is copied
+        for relative, (data, executable) in user_tree(plan).items():
+            outputs[relative] = (data, executable)
+            copied[str(plan.model_dir / relative)] = digest(data)
     if problems:
         # an error that points at a skeleton finds it up to date
         for relative in skeletons:

@@ -28,13 +28,13 @@ FILES = (
         skeleton=True),
 )
 
-#: the user's files: created once next to the model, copied into the build
+#: the user's files: created once next to the model, compiled from there
 USER_FILES = (
-    UserRow('src/{package}/{cls}_impl.hpp', 'src/{package}/{cls}_impl.hpp',
-            'component_cpp/impl.hpp.jinja', f'{_SKEL}.hpp', when='has_impl',
+    UserRow('src/{package}/{cls}_impl.hpp', 'component_cpp/impl.hpp.jinja',
+            f'{_SKEL}.hpp', when='has_impl',
             required_functions='user_functions', required_class='{cls}_impl'),
-    UserRow('src/{package}/{cls}_impl.cpp', 'src/{package}/{cls}_impl.cpp',
-            'component_cpp/impl.cpp.jinja', f'{_SKEL}.cpp', when='has_impl'),
+    UserRow('src/{package}/{cls}_impl.cpp', 'component_cpp/impl.cpp.jinja',
+            f'{_SKEL}.cpp', when='has_impl'),
 )
 
 
@@ -46,5 +46,6 @@ def cpp_package(context: CppComponent, model_dir: Path) -> PackagePlan:
         exec_depends=context.find_packages,
         files=files_of(FILES, context),
         user_files=user_files_of(USER_FILES, context),
+        user_folders=context.folders.all,
         prefix_requirements=context.prefix_requirements,
         summary={'executables': [context.cls], 'language': 'cpp'})

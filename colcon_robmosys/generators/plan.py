@@ -30,13 +30,12 @@ class FileSpec:
 class UserFile:
     """A file the user owns: created once from a template, never rewritten.
 
-    Its content is copied into the generated package at ``package_path``.
+    The build uses it where it is; a standalone package holds a copy at the
+    same path.
     """
 
     #: path relative to the directory of the model file
     source_path: str
-    #: where the build uses it, inside the generated package
-    package_path: str
     template: str
     context: Any
     #: the names the user's code has to define
@@ -60,6 +59,12 @@ class PackagePlan:
     exec_depends: tuple[str, ...]
     files: tuple[FileSpec, ...]
     user_files: tuple[UserFile, ...] = ()
+    #: the folders of the user's own files, relative to model_dir (see
+    #: mapping/userfiles.py): a standalone package holds a copy of them
+    user_folders: tuple[str, ...] = ()
+    #: a folder of the user's -> the generated folder it is installed with
+    #: (a Python package): no file of the user's may take a generated name
+    merged_folders: Mapping[str, str] = field(default_factory=dict)
     #: packages the build needs from the ROS 2 prefix, not from the
     #: workspace (rclcpp for C++): without them the build is skipped
     prefix_requirements: tuple[str, ...] = ()
@@ -97,7 +102,6 @@ class UserRow:
     """A row of a generator's table for a file the user owns."""
 
     source_path: str
-    package_path: str
     template: str
     skeleton_path: str
     when: str = ''
@@ -141,7 +145,6 @@ def user_files_of(rows: tuple[UserRow, ...],
     return tuple(
         UserFile(
             source_path=_path(row.source_path, context),
-            package_path=_path(row.package_path, context),
             template=row.template, context=context,
             required_functions=tuple(
                 f.name for f in getattr(context, row.required_functions))

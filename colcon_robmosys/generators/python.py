@@ -25,10 +25,10 @@ FILES = (
         skeleton=True),
 )
 
-#: the user's file: created once next to the model, copied into the build
+#: the user's file: created once next to the model, installed from there
 USER_FILES = (
-    UserRow('src/{package}/{cls}_impl.py', '{package}/{cls}_impl.py',
-            'component_python/impl.py.jinja', _SKEL, when='has_impl',
+    UserRow('src/{package}/{cls}_impl.py', 'component_python/impl.py.jinja', _SKEL,
+            when='has_impl',
             required_functions='user_functions', required_class='{cls}_impl'),
 )
 
@@ -40,4 +40,7 @@ def python_package(context: PyComponent, model_dir: Path) -> PackagePlan:
         build_depends=context.depends, exec_depends=context.exec_depends,
         files=files_of(FILES, context),
         user_files=user_files_of(USER_FILES, context),
+        user_folders=context.folders.all,
+        # the user's modules join the generated ones in one Python package
+        merged_folders={context.folders.code: context.package},
         summary={'executables': [context.cls]})

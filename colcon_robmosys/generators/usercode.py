@@ -1,16 +1,21 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-"""Check the user's implementation files against what the model asks."""
+"""The user's files: the implementation checked against the model, the others found."""
 
 from __future__ import annotations
 
 import ast
+import os
 from pathlib import Path
 import re
+from typing import Iterator, Mapping
 
 from colcon_robmosys.errors import Diagnostic, Location
-from colcon_robmosys.generators.plan import UserFile
+from colcon_robmosys.generators.plan import PackagePlan, UserFile
+
+#: What a build leaves among the user's files: never part of the package.
+_LEFT_BY_TOOLS = ('__pycache__', '.pytest_cache')
 
 
 def _skeleton_hint(user_file: UserFile, skeleton: Path | str) -> str:
@@ -105,3 +110,52 @@ def _cpp_header_problems(user_file: UserFile, path: Path, text: str,
 _CPP_NOISE = re.compile(
     r'//[^\n]*|/\*.*?\*/|"(?:\\.|[^"\\\n])*"|\'(?:\\.|[^\'\\\n])*\'|^[ \t]*#[^\n]*',
     re.DOTALL | re.MULTILINE)
+
+
+def _user_files_below(folder: Path) -> Iterator[Path]:
+    """Yield the user's files below a folder, sorted; none if it is missing.
+
+    Hidden files and what tools leave (``__pycache__``, ``*.pyc``) are not
+    the user's sources.
+    """
+    if not folder.is_dir():
+        return
+    for root, dirs, files in os.walk(folder):
+        dirs[:] = sorted(d for d in dirs
+                         if not d.startswith('.') and d not in _LEFT_BY_TOOLS)
+        for name in sorted(files):
+            if not name.startswith('.') and not name.endswith('.pyc'):
+                yield Path(root, name)
+
+
+def user_tree(plan: PackagePlan) -> dict[str, tuple[bytes, bool]]:
+    """Return the user's files of a package, at their paths next to the model.
+
+    :returns: path relative to the model's directory -> content, and
+      whether it is executable
+    """
+    found = {}
+    for folder in plan.user_folders:
+        for path in _user_files_below(plan.model_dir / folder):
+            relative = path.relative_to(plan.model_dir).as_posix()
+            found[relative] = (path.read_bytes(), os.access(path, os.X_OK))
+    return found
+
+
+def merge_conflicts(plan: PackagePlan,
+                    outputs: Mapping[str, object]) -> list[Diagnostic]:
+    """Return an error for each file of the user's that takes a generated name.
+
+    The user's modules are installed with the generated ones, in one Python
+    package: one of them would replace the other.
+    """
+    problems = []
+    for folder, generated in plan.merged_folders.items():
+        for path in _user_files_below(plan.model_dir / folder):
+            relative = path.relative_to(plan.model_dir / folder).as_posix()
+            if f'{generated}/{relative}' in outputs:
+                problems.append(Diagnostic(
+                    Location(str(path)),
+                    f"the generated module '{generated}/{relative}' has this "
+                    'name: rename the file, the package cannot hold both'))
+    return problems

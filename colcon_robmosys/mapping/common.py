@@ -79,8 +79,13 @@ def package_xml(
         build: Iterable[str] = (), exec_: Iterable[str] = (),
         depend: Iterable[str] = (), test: Iterable[str] = (),
         groups: Iterable[str] = ()) -> PackageXml:
-    """Return the variables of a package.xml."""
-    depends = unique(list(depend) + list(info.depends))
+    """Return the variables of a package.xml.
+
+    The model's system dependencies are rosdep keys: ``<depend>`` too, for
+    ``rosdep install --from-paths``, but no package to find.
+    """
+    depends = unique(list(depend) + list(info.depends) +
+                     list(info.system_depends))
     return PackageXml(
         banner=banner, name=info.name, version=info.version,
         description=info.description, maintainers=info.maintainers,

@@ -29,6 +29,7 @@ from colcon_robmosys.mapping.cpp_context import (
 from colcon_robmosys.mapping.literals import cpp_str, split_literal
 from colcon_robmosys.mapping.portkinds import Delivery, Entity, port_kind, Returns
 from colcon_robmosys.mapping.qos import resolve_qos
+from colcon_robmosys.mapping.userfiles import user_folders, UserFolders
 from colcon_robmosys.model.types import Component, InterfaceRef, Parameter, QoS
 
 #: The ROS 2 packages a C++ component needs in the prefix to build at all.
@@ -277,8 +278,13 @@ def _includes(plan: ComponentPlan) -> CppIncludes:
     return CppIncludes(tuple(sorted(set(system))), tuple(ros))
 
 
-def spell_cpp(component: Component, plan: ComponentPlan) -> CppComponent:
-    """Spell the plan of a C++ component."""
+def spell_cpp(component: Component, plan: ComponentPlan,
+              folders: UserFolders | None = None) -> CppComponent:
+    """Spell the plan of a C++ component.
+
+    :param folders: where the user's files are (by default, as for the only
+      component of its file)
+    """
     package, cls = plan.package, plan.cls
     banner = banner_of(component)
     ports = tuple(_port(p) for p in plan.ports)
@@ -309,11 +315,13 @@ def spell_cpp(component: Component, plan: ComponentPlan) -> CppComponent:
         (('rclcpp_action::rclcpp_action',) if plan.uses_actions else ()) +
         ('rclcpp_components::component', f'{RUNTIME_PACKAGE}::{RUNTIME_PACKAGE}'),
         interface_packages=interfaces,
-        sources=(f'{src}/{cls}.cpp',) +
-        ((f'src/{package}/{cls}_impl.cpp',) if plan.has_impl else ()) +
-        (f'{src}/{cls}_component.cpp',),
+        # the user's sources are compiled where they live (the template
+        # finds them): only the generated ones here
+        sources=(f'{src}/{cls}.cpp', f'{src}/{cls}_component.cpp'),
         prefix_requirements=client_packages,
         package_xml=package_xml(
             banner, component.info, buildtool=['ament_cmake'],
             depend=build_depends,
-            test=['ament_cmake_cpplint', 'ament_cmake_uncrustify']))
+            test=['ament_cmake_cpplint', 'ament_cmake_uncrustify',
+                  'ament_cmake_gtest', 'ament_cmake_pytest']),
+        folders=folders or user_folders(component))

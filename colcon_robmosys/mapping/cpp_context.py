@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from typing import Mapping
 
 from colcon_robmosys.mapping.common import Banner, PackageXml
+from colcon_robmosys.mapping.userfiles import UserFolders
 
 
 @dataclass(frozen=True)
@@ -117,6 +118,8 @@ class CppComponent:
     sources: tuple[str, ...]
     prefix_requirements: tuple[str, ...]
     package_xml: PackageXml
+    #: where the user's files are, next to the model
+    folders: UserFolders
     #: the skeleton or the user's file (impl templates)
     skeleton: bool = False
 

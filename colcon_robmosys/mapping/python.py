@@ -21,6 +21,7 @@ from colcon_robmosys.mapping.python_context import (
     PyActivity, PyComponent, PyFunction, PyParameter, PyPort, PyRange,
     PyTransition)
 from colcon_robmosys.mapping.qos import resolve_qos
+from colcon_robmosys.mapping.userfiles import user_folders, UserFolders
 from colcon_robmosys.model.types import Component, InterfaceRef, Parameter, QoS
 
 _QOS_NAMES = frozenset({'DurabilityPolicy', 'HistoryPolicy', 'LivelinessPolicy',
@@ -257,8 +258,13 @@ def _function(function: FunctionPlan,
                          function.description))
 
 
-def spell_python(component: Component, plan: ComponentPlan) -> PyComponent:
-    """Spell the plan of a Python component."""
+def spell_python(component: Component, plan: ComponentPlan,
+                 folders: UserFolders | None = None) -> PyComponent:
+    """Spell the plan of a Python component.
+
+    :param folders: where the user's files are (by default, as for the only
+      component of its file)
+    """
     package, cls = plan.package, plan.cls
     type_names = _python_names([p.type for p in plan.ports])
     ports = tuple(_port(p, type_names[p.type]) for p in plan.ports)
@@ -300,4 +306,5 @@ def spell_python(component: Component, plan: ComponentPlan) -> PyComponent:
         package_xml=package_xml(
             banner, component.info,
             buildtool=['ament_cmake', 'ament_cmake_python'],
-            exec_=exec_depends))
+            exec_=exec_depends, test=['ament_cmake_pytest']),
+        folders=folders or user_folders(component))

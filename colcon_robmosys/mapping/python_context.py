@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from colcon_robmosys.mapping.common import Banner, PackageXml
+from colcon_robmosys.mapping.userfiles import UserFolders
 
 
 @dataclass(frozen=True)
@@ -115,6 +116,8 @@ class PyComponent:
     depends: tuple[str, ...]
     exec_depends: tuple[str, ...]
     package_xml: PackageXml
+    #: where the user's files are, next to the model
+    folders: UserFolders
     skeleton: bool = False
 
     @property

@@ -86,6 +86,8 @@ class PackageInfo:
     location: Location
     #: where the model names each of ``depends``
     depends_locations: tuple[Location, ...] = ()
+    #: rosdep keys of system dependencies (components): for package.xml only
+    system_depends: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -78,6 +78,7 @@ class BuilderBase:
             depends_locations=tuple(
                 self.at(path + ('depends', i))
                 for i in range(len(raw.get('depends', ())))),
+            system_depends=tuple(raw.get('system_depends', ())),
         )
 
 

@@ -1,6 +1,7 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
+import os
 from pathlib import Path
 
 from colcon_core.event.output import StderrLine
@@ -59,7 +60,7 @@ class RobmosysBuildTask(TaskExtensionPoint):
             plan = plan_package(result.workspace, pkg.name)
             report = unchanged_package(source_dir, stamps, fingerprint) or \
                 generate_package(plan, source_dir, stamps=stamps,
-                                 fingerprint=fingerprint)
+                                 fingerprint=fingerprint, standalone=False)
         except RobmosysError as error:
             print_diagnostics(error.diagnostics)
             return 1
@@ -69,8 +70,12 @@ class RobmosysBuildTask(TaskExtensionPoint):
             f'{len(report.unchanged)} unchanged, '
             f'{len(report.removed)} removed')
 
-        # the generated tree is an ordinary ament_cmake package
+        # the generated tree is an ordinary ament_cmake package; the user's
+        # files are built and installed where they live, next to the model,
+        # so that compilers, debuggers, linters and symlinks point there
         args.path = str(source_dir)
+        args.cmake_args = list(getattr(args, 'cmake_args', None) or []) + [
+            f'-DROBMOSYS_SOURCE_DIR={os.path.abspath(plan.model_dir)}']
         extension = AmentCmakeBuildTask()
         extension.set_context(context=self.context)
         return await extension.build()
