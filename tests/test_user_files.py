@@ -8,7 +8,9 @@ Extra modules, a config file and pytest tests next to the model (docs/model-form
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
+import shutil
 import xml.etree.ElementTree as ET
 
 import pytest
@@ -141,3 +143,76 @@ def test_symlink_install_links_the_user_files_to_the_source(tmp_path):
     (package / 'src' / 'echo' / 'text' / 'words.py').write_text(
         WORDS.replace('hello from words', 'edited'))
     assert 'edited' in (site / 'text' / 'words.py').read_text()
+
+
+#: a helper next to the C++ implementation file, and an extra source
+WORDS_HPP = """\
+// A helper of the user's, next to the implementation file.
+#ifndef CPP_RECEIVER__WORDS_HPP_
+#define CPP_RECEIVER__WORDS_HPP_
+
+#include <string>
+
+namespace cpp_receiver
+{
+std::string words();
+}  // namespace cpp_receiver
+
+#endif  // CPP_RECEIVER__WORDS_HPP_
+"""
+WORDS_CPP = """\
+// An extra source of the user's: compiled into the component's library.
+#include "cpp_receiver/words.hpp"
+
+#include <string>
+
+namespace cpp_receiver
+{
+std::string words() {return "words of the user";}
+}  // namespace cpp_receiver
+"""
+GTEST = """\
+// The user's gtest, linked with the component's library.
+#include <gtest/gtest.h>
+
+#include "cpp_receiver/words.hpp"
+
+TEST(Words, AreTheUsers) {EXPECT_EQ(cpp_receiver::words(), "words of the user");}
+"""
+
+
+def test_cpp_user_files_compile_where_they_live_and_their_gtest_runs(tmp_path):
+    from test_cpp_system import rclcpp_missing_reason
+    if rclcpp_missing_reason():
+        pytest.skip(rclcpp_missing_reason())
+    from conftest import TEST_WORKSPACE
+    src = tmp_path / 'src'
+    for package in ('simple_msgs', 'cpp_receiver'):
+        shutil.copytree(TEST_WORKSPACE / 'src' / package, src / package)
+    code = src / 'cpp_receiver' / 'src' / 'cpp_receiver'
+    (code / 'words.hpp').write_text(WORDS_HPP)
+    (code / 'words.cpp').write_text(WORDS_CPP)
+    impl = code / 'Receiver_impl.cpp'
+    text = impl.read_text().replace(
+        '#include <memory>\n', '#include <memory>\n\n#include "cpp_receiver/words.hpp"\n')
+    impl.write_text(text.replace('"received map: width %u, height %u", ',
+                                 '"%s: width %u, height %u", words().c_str(), '))
+    (src / 'cpp_receiver' / 'test').mkdir()
+    (src / 'cpp_receiver' / 'test' / 'words_test.cpp').write_text(GTEST)
+    (src / 'cpp_receiver' / 'config').mkdir()
+    (src / 'cpp_receiver' / 'config' / 'extra.yaml').write_text('a: 1\n')
+    _ok(colcon(['build', '--cmake-args', '-DCMAKE_EXPORT_COMPILE_COMMANDS=ON'],
+               cwd=tmp_path, timeout=1200))
+    # compiled where they live: compilers and tools name the user's files
+    commands = json.loads((tmp_path / 'build' / 'cpp_receiver' /
+                           'compile_commands.json').read_text())
+    files = {Path(c['file']).resolve() for c in commands}
+    assert {impl.resolve(), (code / 'words.cpp').resolve()} <= files, files
+    assert (tmp_path / 'install' / 'cpp_receiver' / 'share' / 'cpp_receiver' / 'config' /
+            'extra.yaml').is_file()
+    _ok(colcon(['test', '--packages-select', 'cpp_receiver', '--ctest-args', '-R', 'user'],
+               cwd=tmp_path, timeout=600))
+    cases: dict[str, str] = {}
+    for results in (tmp_path / 'build' / 'cpp_receiver' / 'test_results').rglob('*.xml'):
+        cases.update(_test_cases(results))
+    assert cases.get('AreTheUsers') == 'passed', cases
