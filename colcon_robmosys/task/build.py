@@ -74,8 +74,11 @@ class RobmosysBuildTask(TaskExtensionPoint):
         # files are built and installed where they live, next to the model,
         # so that compilers, debuggers, linters and symlinks point there
         args.path = str(source_dir)
-        args.cmake_args = list(getattr(args, 'cmake_args', None) or []) + [
-            f'-DROBMOSYS_SOURCE_DIR={os.path.abspath(plan.model_dir)}']
+        if plan.kind == 'component':
+            # only components have files of the user's: CMake warns of a variable
+            # that a package does not use
+            args.cmake_args = list(getattr(args, 'cmake_args', None) or []) + [
+                f'-DROBMOSYS_SOURCE_DIR={os.path.abspath(plan.model_dir)}']
         extension = AmentCmakeBuildTask()
         extension.set_context(context=self.context)
         return await extension.build()
