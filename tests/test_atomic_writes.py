@@ -46,7 +46,7 @@ from colcon_robmosys.generators import plan_package
 src, out = Path(sys.argv[1]), Path(sys.argv[2])
 result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
 result.raise_errors()
-plans = [plan_package(result.workspace, m.package) for m in result.workspace.models]
+plans = [plan_package(result.workspace, m.package) for m in result.workspace.generated_models]
 events = []
 
 def hook(event, args):
@@ -107,7 +107,7 @@ def _generate(src: Path, out: Path, *, kill_after: float | None = None,
 
 def _generate_here(src: Path, out: Path) -> None:
     result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
-    for model in result.workspace.models:
+    for model in result.workspace.generated_models:
         generate_package(plan_package(result.workspace, model.package), out / model.package)
 
 

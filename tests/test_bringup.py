@@ -256,7 +256,8 @@ def test_the_heartbeat_notices_an_instance_that_stops_answering_or_leaves_active
 
 def test_the_smoke_test_of_every_example_system_passes_under_colcon_test(
         test_workspace_built):
-    systems = [p for p in ('examples_system', 'pubsub_system', 'dummy_robot_bringup')
+    systems = [p for p in ('examples_system', 'pubsub_system', 'dummy_robot_bringup',
+                           'handwritten_system')
                if (test_workspace_built.install / p).is_dir()]
     assert 'examples_system' in systems
     result = colcon(['test', '--packages-select', *systems,

@@ -118,7 +118,7 @@ def _valid_workspaces() -> list[list[Path]]:
 def test_what_the_check_accepts_is_generated(paths: list[Path], index: InterfaceIndex):
     result = load_workspace(paths, index)
     assert result.errors == []
-    for model in result.workspace.models:
+    for model in result.workspace.generated_models:
         plan = plan_package(result.workspace, model.package)
         for spec in plan.files:
             assert render(spec.template, spec.context)

@@ -58,6 +58,10 @@ def test_colcon_list_shows_one_package_per_model(workspace):
         ('fibonacci_client', '(robmosys.component)'),
         ('fibonacci_server', '(robmosys.component)'),
         ('hand_level_sensor', '(ros.ament_cmake)'),
+        # hand-written nodes, and a system of them: their models are external
+        # components, which make no package of their own
+        ('handwritten_nodes', '(ros.ament_python)'),
+        ('handwritten_system', '(robmosys.system)'),
         ('level_sensor', '(robmosys.component)'),
         ('level_watcher', '(robmosys.component)'),
         ('map_tools', '(ros.ament_cmake)'),
@@ -70,6 +74,7 @@ def test_colcon_list_shows_one_package_per_model(workspace):
         ('sender', '(robmosys.component)'),
         ('simple_msgs', '(robmosys.interfaces)'),
         ('subscriber', '(robmosys.component)'),
+        ('text_relay', '(robmosys.component)'),
     ]
 
 
@@ -127,7 +132,8 @@ def test_generate_creates_missing_implementation_only(workspace):
     assert impl.read_bytes() == mine
     generated = workspace / 'gen' / 'subscriber'
     assert (generated / 'src-skel' / 'subscriber' / 'Subscriber_impl_skel.py').is_file()
-    assert (generated / 'subscriber' / 'Subscriber_impl.py').read_bytes() == mine
+    # the user's files keep their paths in a written package (docs/model-format.md)
+    assert (generated / 'src' / 'subscriber' / 'Subscriber_impl.py').read_bytes() == mine
     # marked as colcon marks build/: not found as packages next time
     assert (workspace / 'gen' / 'COLCON_IGNORE').is_file()
     assert sorted(p.name for p in (workspace / 'gen').iterdir() if p.is_dir()) == [
@@ -136,8 +142,9 @@ def test_generate_creates_missing_implementation_only(workspace):
         'cpp_receiver', 'cpp_sender', 'cpp_server', 'cpp_subscriber', 'dummy_joint_states',
         'dummy_laser', 'dummy_map_server', 'dummy_robot_bringup', 'dummy_robot_cpp_bringup',
         'dummy_robot_monitor', 'example_msgs', 'examples_system', 'fibonacci_client',
-        'fibonacci_server', 'level_sensor', 'level_watcher', 'mixed_system', 'publisher',
-        'pubsub_system', 'receiver', 'sender', 'simple_msgs', 'subscriber']
+        'fibonacci_server', 'handwritten_system', 'level_sensor', 'level_watcher',
+        'mixed_system', 'publisher', 'pubsub_system', 'receiver', 'sender', 'simple_msgs',
+        'subscriber', 'text_relay']
 
 
 def test_generate_honours_package_selection(workspace):

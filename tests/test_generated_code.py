@@ -28,7 +28,7 @@ def generate_workspace(src: Path, out: Path) -> dict[str, object]:
     result.raise_errors()
     return {m.package: generate_package(plan_package(result.workspace, m.package),
                                         out / m.package)
-            for m in result.workspace.models}
+            for m in result.workspace.generated_models}
 
 
 @pytest.fixture(scope='module')

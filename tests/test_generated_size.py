@@ -40,7 +40,7 @@ def test_generated_components_average_under_the_limit(tmp_path):
                             InterfaceIndex([Path(sys.prefix)]))
     result.raise_errors()
     counts = {}
-    for model in result.workspace.models:
+    for model in result.workspace.generated_models:
         if isinstance(model, Component):
             generate_package(plan_package(result.workspace, model.package),
                              tmp_path / model.package)

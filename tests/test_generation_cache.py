@@ -103,7 +103,7 @@ def _generate_all(src: Path, out: Path, index: InterfaceIndex) -> dict[str, int]
     stamps = StampStore(out / CACHE_DIR / 'stamps')
     result = _load(src, index, cache)
     counts = {'skipped': 0, 'generated': 0, 'written': 0}
-    for model in result.workspace.models:
+    for model in result.workspace.generated_models:
         if model.package in result.broken_files or result.errors_of(model.info.model_file):
             continue
         fingerprint = result.fingerprint(model.package)

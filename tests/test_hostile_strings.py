@@ -142,7 +142,7 @@ def _generate(root: Path, text: str) -> Path:
             yaml.safe_dump(model, allow_unicode=True, sort_keys=False), encoding='utf-8')
     result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
     result.raise_errors()
-    for model in result.workspace.models:
+    for model in result.workspace.generated_models:
         plan = plan_package(result.workspace, model.package)
         create_missing_user_files(plan)
         generate_package(plan, out / model.package)

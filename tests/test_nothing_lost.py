@@ -86,7 +86,7 @@ class Workspace:
     def generate(self) -> None:
         """Regenerate every package, as the verb does with --output-dir."""
         result = load_workspace(find_model_files([self.src]), self.index)
-        for model in result.workspace.models:
+        for model in result.workspace.generated_models:
             try:
                 plan = plan_package(result.workspace, model.package)
                 for path in create_missing_user_files(plan):

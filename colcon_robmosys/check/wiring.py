@@ -20,6 +20,11 @@ from colcon_robmosys.model.types import (
 class WiringRules(CheckContext):
     """What a system may instantiate and connect."""
 
+    def _managed(self, instance: Instance) -> bool:
+        """Tell whether the system activates an instance: a lifecycle node, not left out."""
+        component = self.components.get(instance.component)
+        return instance.activate and (component is None or component.lifecycle_node)
+
     def _check_system(self, system: System) -> None:
         components: dict[str, Component] = {}
         node_names: dict[str, str] = {}
@@ -56,12 +61,14 @@ class WiringRules(CheckContext):
                     self.error(instance.location,
                                f"instance '{instance.name}' is activated "
                                f"after unknown instance '{after}'")
-                elif not other.activate or not instance.activate:
-                    unmanaged = instance if not instance.activate else other
+                elif not self._managed(other) or not self._managed(instance):
+                    unmanaged = instance if not self._managed(instance) else other
+                    why = '(activate: false)' if not unmanaged.activate else \
+                        '(an external node that is not a lifecycle node)'
                     self.error(instance.location,
                                f"instance '{instance.name}' is activated "
                                f"after '{after}', but '{unmanaged.name}' is "
-                               'not activated by the system (activate: false)')
+                               f'not activated by the system {why}')
         connected: set[tuple[str, str]] = set()
         names = _Names()
         for connection in system.connections:

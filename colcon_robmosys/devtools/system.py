@@ -94,7 +94,11 @@ def read_launch_file(path: Path, share_dir: Path) -> list[NodeLaunch]:
                 names[node.targets[0].id] = share_dir / relative
     nodes = []
     for node in ast.walk(tree):
-        if isinstance(node, ast.Call) and ast.unparse(node.func) == 'LifecycleNode':
+        # the instances: lifecycle nodes, and plain external nodes (the system
+        # manager, a Node too, has no name of an instance)
+        if isinstance(node, ast.Call) and \
+                ast.unparse(node.func) in ('LifecycleNode', 'Node') and \
+                any(k.arg == 'name' for k in node.keywords):
             kwargs = {k.arg: _literal(k.value, names) for k in node.keywords
                       if k.arg is not None}
             nodes.append(NodeLaunch(

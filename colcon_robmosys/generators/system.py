@@ -9,7 +9,8 @@ from pathlib import Path
 
 from colcon_robmosys.generators.plan import (
     files_of, FileSpec, PackagePlan, Row)
-from colcon_robmosys.mapping.system import PARAMS_FILE, SystemPackage
+from colcon_robmosys.mapping.launch import PARAMS_FILE
+from colcon_robmosys.mapping.system import SystemPackage
 
 #: template -> output path, once per launch file (all instances, then each)
 LAUNCH_FILES = (

@@ -5,7 +5,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 import json
 from typing import Any
 
@@ -15,113 +15,11 @@ from colcon_robmosys.mapping.component import plan_component
 from colcon_robmosys.mapping.connections import (
     connection_topics, node_fqn, provided_end, system_connections, SystemConnection)
 from colcon_robmosys.mapping.cpp import RUNTIME_PACKAGE
+from colcon_robmosys.mapping.launch import (
+    launch_files, LaunchFile, PARAMS_FILE, SystemNode)
 from colcon_robmosys.mapping.portkinds import port_kind
 from colcon_robmosys.model.parameters import freeze_parameter_value
 from colcon_robmosys.model.types import Component, Instance, Language, System, Workspace
-
-PARAMS_FILE = 'cfg/params.yaml'
-
-
-@dataclass(frozen=True)
-class SystemNode:
-    """An instance as a lifecycle node of the launch files."""
-
-    instance: str
-    package: str
-    executable: str
-    name: str
-    namespace: str
-    #: (port, ROS 2 name) for each connected port
-    remappings: tuple[tuple[str, str], ...]
-    activate: bool
-    after: tuple[str, ...]
-    fqn: str
-    #: the instances of the same launch file it waits for
-    activate_after: tuple[str, ...] = ()
-    #: started again when its process ends
-    respawn: bool = False
-    #: seconds for each lifecycle transition; None: the bring-up's default
-    timeout: float | None = None
-    #: the host it runs on; '' for the manager's
-    host: str = ''
-    #: module:class of a Python component (``bringup`` runs shared processes with it)
-    python_class: str = ''
-    #: the rclcpp_components plugin of a C++ component (its shared container loads it)
-    plugin: str = ''
-
-
-@dataclass(frozen=True)
-class LaunchAlias:
-    """A launch file under its name of the last release, including its new one."""
-
-    banner: Banner
-    package: str
-    old: str
-    new: str
-
-
-@dataclass(frozen=True)
-class LaunchFile:
-    """A launch file, and its activate twin: all instances or one.
-
-    Named as ROS 2 names launch files, ``<name>.launch.py``: the system's
-    ``<system>.launch.py`` starts and activates every instance,
-    ``<system>.nodes.launch.py`` only starts them; each instance has
-    ``<system>.<instance>.launch.py`` and ``<system>.<instance>.nodes.launch.py``
-    (an instance may not be called ``nodes``). The names of the last release,
-    ``launch{suffix}.py`` and ``activate{suffix}.py``, stay as aliases.
-    """
-
-    suffix: str
-    banner: Banner
-    package: str
-    params_file: str
-    nodes: tuple[SystemNode, ...]
-    what: str
-    #: instances it activates that the launch file of their host starts
-    remote: tuple[SystemNode, ...] = ()
-
-    @property
-    def stem(self) -> str:
-        """Return the name the launch files share: the system's, or with an instance."""
-        return f'{self.package}{self.suffix}'
-
-    @property
-    def activate_file(self) -> str:
-        """Return the file name of the launch file that also activates."""
-        return f'{self.stem}.launch.py'
-
-    @property
-    def nodes_file(self) -> str:
-        """Return the file name of the launch file that only starts the nodes."""
-        return f'{self.stem}.nodes.launch.py'
-
-    @property
-    def has_manager(self) -> bool:
-        """Tell whether the file starts the system manager: the system's own file does."""
-        return self.suffix == ''
-
-    @property
-    def activates_itself(self) -> bool:
-        """Tell whether the file activates its instances itself (one instance, a host)."""
-        return not self.has_manager
-
-    @property
-    def has_aliases(self) -> bool:
-        """Tell whether the last release had the file: the files of hosts are new."""
-        return not self.suffix.startswith('.on_')
-
-    @property
-    def activate_alias(self) -> LaunchAlias:
-        """Return the alias of the activating file under its former name."""
-        return LaunchAlias(self.banner, self.package, f'activate{self.suffix}.py',
-                           self.activate_file)
-
-    @property
-    def nodes_alias(self) -> LaunchAlias:
-        """Return the alias of the starting file under its former name."""
-        return LaunchAlias(self.banner, self.package, f'launch{self.suffix}.py',
-                           self.nodes_file)
 
 
 @dataclass(frozen=True)
@@ -227,54 +125,37 @@ def _node(instance: Instance, component: Component,
           topics: dict[tuple[str, str], str]) -> SystemNode:
     return SystemNode(
         instance=instance.name, package=component.package,
-        executable=component.name, name=instance.name,
+        executable=component.executable_name, name=instance.name,
         namespace=instance.namespace,
-        remappings=tuple((p.name, topics[(instance.name, p.name)])
+        # the name the node gives a port: the port's, or an external node's own
+        remappings=tuple((p.node_name, topics[(instance.name, p.name)])
                          for p in component.ports
                          if (instance.name, p.name) in topics),
-        activate=instance.activate, after=instance.after,
+        # a plain node cannot be configured nor activated: started only
+        activate=instance.activate and component.lifecycle_node,
+        lifecycle=component.lifecycle_node, after=instance.after,
         fqn=node_fqn(instance), respawn=instance.respawn, timeout=instance.timeout,
         host=instance.host,
-        **_in_process(component))
+        python_class=_python_class(component), plugin=_plugin(component))
 
 
-def _in_process(component: Component) -> dict[str, str]:
-    """Return how a process of several instances creates the node of a component.
+def _python_class(component: Component) -> str:
+    """Return module:class of the node a Python component's executable runs.
 
-    Python: module:class of the node its executable runs; C++: the
-    rclcpp_components plugin its package registers (component.cpp.jinja).
+    A process of several instances creates the nodes with it (robmosys_runtime.container).
     """
+    if component.external or component.language is not Language.PYTHON:
+        return ''
     plan = plan_component(component)
-    if component.language is Language.PYTHON:
-        return {'python_class': f'{plan.package}.{plan.node_module}:{plan.node_cls}'}
-    return {'plugin': f'{plan.package}::{plan.node_cls}'}
+    return f'{plan.package}.{plan.node_module}:{plan.node_cls}'
 
 
-def _launch_files(system: System, nodes: tuple[SystemNode, ...],
-                  banner: Banner) -> tuple[LaunchFile, ...]:
-    local = tuple(n for n in nodes if not n.host)
-    remote = tuple(n for n in nodes if n.host)
-    # the system's files start the instances of the manager's host, and
-    # activate those of every host
-    variants = [('', local, remote, f'every instance of the system {system.name}'
-                 + (' that runs on no host of its own' if remote else ''))]
-    variants += [(f'.{n.instance}', (n,), (), f'the instance {n.instance} '
-                  f'of the system {system.name}') for n in nodes]
-    variants += [(f'.on_{host}', tuple(n for n in remote if n.host == host), (),
-                  f'the instances of the system {system.name} on the host {host}')
-                 for host in unique(n.host for n in remote)]
-    files = []
-    for suffix, selected, elsewhere, what in variants:
-        # a file waits only for instances it activates itself: an instance
-        # started by another file, or left unmanaged, would never be seen
-        managed = {n.instance for n in selected + elsewhere if n.activate}
-
-        def waiting(chosen: tuple[SystemNode, ...]) -> tuple[SystemNode, ...]:
-            return tuple(replace(n, activate_after=tuple(a for a in n.after if a in managed))
-                         for n in chosen)
-        files.append(LaunchFile(suffix, banner, system.package, PARAMS_FILE,
-                                waiting(selected), what, waiting(elsewhere)))
-    return tuple(files)
+def _plugin(component: Component) -> str:
+    """Return the rclcpp_components plugin a C++ component's package registers."""
+    if component.external or component.language is not Language.CPP:
+        return ''
+    plan = plan_component(component)
+    return f'{plan.package}::{plan.node_cls}'
 
 
 def _parameters(system: System, components: dict[str, Component]
@@ -339,7 +220,7 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
                                'ament_index_python', RUNTIME_PACKAGE)
     return SystemPackage(
         banner=banner, package=system.package, name=system.name, nodes=nodes,
-        launch_files=_launch_files(system, nodes, banner),
+        launch_files=launch_files(system, nodes, banner),
         params=_parameters(system, components),
         diagram=f'doc/{system.package}.dot',
         instances=_instances(system, components),

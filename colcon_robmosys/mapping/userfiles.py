@@ -66,7 +66,7 @@ def user_folders(component: Component, workspace: Workspace | None = None
     """
     siblings = [] if workspace is None else [
         m for m in workspace.models
-        if isinstance(m, Component) and
+        if isinstance(m, Component) and not m.external and
         m.info.model_file == component.info.model_file]
     own = component.package if len(siblings) > 1 else ''
     return UserFolders(code=f'src/{component.package}', own=own)

@@ -73,9 +73,22 @@ class ComponentBuilder(BuilderBase):
                            for n, body in raw.get('parameters', {}).items())
         self._check_member_names(path, ports, functions, activities,
                                  parameters)
+        external = raw.get('external') or {}
+        for port in ports:
+            if port.ros_name is not None and not external:
+                self.error(path + ('ports', port.name, 'name'),
+                           f"port '{port.name}': only the port of an external component "
+                           'has a name of its own (a generated node uses the port name)')
+        if external:
+            for section in ('activities', 'functions', 'lifecycle'):
+                if raw.get(section):
+                    # nothing is generated: no code of the model would run
+                    self.error(path + (section,), f"external component '{name}' has no "
+                               f'{section}: its node is not generated', key=True)
         return Component(info, name, language, ports, tuple(activities),
                          functions, parameters, tuple(lifecycle),
-                         self.at(path + ('name',)))
+                         self.at(path + ('name',)), external.get('executable', ''),
+                         bool(external.get('lifecycle', True)))
 
     def _check_member_names(
             self, path: NodePath, ports: tuple[Port, ...],
@@ -112,7 +125,7 @@ class ComponentBuilder(BuilderBase):
         return Port(name, pattern, role, type_, qos,
                     raw.get('description', ''), self.at(path, key=True),
                     self.at(path + ('qos',)) if qos_raw else None,
-                    self.at(path + ('type',)))
+                    self.at(path + ('type',)), raw.get('name'))
 
     def _function(self, path: NodePath, name: str, raw: RawData | None,
                   language: Language) -> Function:

@@ -43,6 +43,13 @@ class Port:
     qos_location: Location | None = None
     #: where the model names its type
     type_location: Location | None = None
+    #: the name the node itself gives it (an external component's); None: the port's name
+    ros_name: str | None = None
+
+    @property
+    def node_name(self) -> str:
+        """Return the name the node uses for the port, what a system remaps."""
+        return self.ros_name or self.name
 
 
 @dataclass(frozen=True)
@@ -109,6 +116,20 @@ class Component:
     #: transition name -> functions run on it, in order
     lifecycle: tuple[tuple[str, tuple[str, ...]], ...]
     location: Location
+    #: the executable of a node nobody generates (``external``); '' for a generated one
+    executable: str = ''
+    #: whether the node is a lifecycle node (always, for a generated one)
+    lifecycle_node: bool = True
+
+    @property
+    def external(self) -> bool:
+        """Tell whether the node is hand-written: nothing is generated for it."""
+        return bool(self.executable)
+
+    @property
+    def executable_name(self) -> str:
+        """Return the executable that runs the node, in lib/<package>/."""
+        return self.executable or self.name
 
     @property
     def package(self) -> str:

@@ -32,14 +32,18 @@ def declared_packages(path: Path) -> list[tuple[str, str]]:
 
 
 def packages_of(data: Any) -> list[tuple[str, str]]:
-    """Return the packages, and their kinds, the data of a file declares."""
+    """Return the packages, and their kinds, the data of a file generates.
+
+    An external component generates none: its package is the user's own.
+    """
     if not isinstance(data, dict):
         return []
     return [(model['package'], kind)
             for key, kind in MODEL_KINDS.items()
             if isinstance(data.get(key), list)
             for model in data[key]
-            if isinstance(model, dict) and isinstance(model.get('package'), str)]
+            if isinstance(model, dict) and isinstance(model.get('package'), str)
+            and not model.get('external')]
 
 
 def find_model_files(base_paths: Sequence[Path]) -> list[Path]:
@@ -70,7 +74,8 @@ def model_dependencies(model: Model) -> list[str]:
     else:
         # an instance of the system itself is an error of its own, not a
         # dependency cycle as well
-        deps.extend(i.component for i in model.instances
+        # an external component is package/executable: the package is the dependency
+        deps.extend(i.component.split('/')[0] for i in model.instances
                     if i.component != model.package)
     return list(dict.fromkeys(deps))
 

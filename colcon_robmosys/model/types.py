@@ -27,7 +27,7 @@ __all__ = [
     'Action', 'Activity', 'CommunicationObject', 'Component', 'Connection',
     'Constant', 'Event', 'Field', 'FieldType', 'Function', 'Instance',
     'InterfaceKind', 'InterfaceRef', 'Language', 'LIFECYCLE_TRANSITIONS',
-    'Maintainer', 'Model', 'ModelFile', 'PackageInfo', 'Parameter',
+    'Maintainer', 'Model', 'model_key', 'ModelFile', 'PackageInfo', 'Parameter',
     'ParameterRange', 'ParameterValue', 'Pattern', 'PATTERN_INTERFACE', 'Port',
     'PortRef', 'PRIMITIVE_TYPES', 'QoS', 'Query', 'Role', 'ServiceDefinition',
     'Structure', 'System', 'Workspace',
@@ -70,10 +70,27 @@ class Workspace:
         for model in models:
             # a package claimed twice is an error of the workspace; until
             # it is fixed, the first model keeps it
-            by_package.setdefault(model.package, model)
+            by_package.setdefault(model_key(model), model)
         object.__setattr__(self, 'models', models)
         object.__setattr__(self, '_by_package', by_package)
 
+    @property
+    def generated_models(self) -> tuple[Model, ...]:
+        """Return the models that generate a package: all but external components."""
+        return tuple(m for m in self.models
+                     if not (isinstance(m, Component) and m.external))
+
     def model(self, package: str) -> Model | None:
-        """Return the model that generates the named package, if any."""
+        """Return the model of a package, or of an external component (package/executable)."""
         return self._by_package.get(package)
+
+
+def model_key(model: Model) -> str:
+    """Return what names a model: its package; package/executable for an external component.
+
+    A hand-written package may hold several nodes: each external component
+    of it is named by its executable too (an instance's ``component``).
+    """
+    if isinstance(model, Component) and model.external:
+        return f'{model.package}/{model.executable}'
+    return model.package

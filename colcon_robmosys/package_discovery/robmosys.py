@@ -94,6 +94,9 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
             d for d in result.diagnostics if d.severity == 'error')
         descriptors = set()
         for model in result.workspace.models:
+            if isinstance(model, Component) and model.external:
+                # a hand-written node: its package is the user's own
+                continue
             kind = 'interfaces' if isinstance(model, ServiceDefinition) else \
                 'component' if isinstance(model, Component) else 'system'
             dependencies = model_dependencies(model)

@@ -91,7 +91,8 @@ def _unless_destroyed(handle: Any, call: Callable[[], Result], otherwise: Result
     between adds the destroyed entity to its wait set and asks whether it is
     ready anyway ("action client pointer is invalid", rclpy 9.1 and 7.1).
     Ports are destroyed on cleanup while the executor spins. Such an entity
-    was not counted in the wait set either, so leaving it out is right.
+    was not counted in the wait set either, so leaving it out is right; and
+    what it has to take is nothing (an empty dict: its execute does nothing).
     """
     try:
         with handle:
@@ -132,6 +133,11 @@ class ActionClient(_RclpyActionClient):
         return _unless_destroyed(self._client_handle,
                                  lambda: super(ActionClient, self).is_ready(wait_set), False)
 
+    def take_data(self) -> Any:
+        """Take what is ready; nothing once destroyed (the executor takes it unguarded)."""
+        return _unless_destroyed(self._client_handle,
+                                 lambda: super(ActionClient, self).take_data(), {})
+
 
 class ActionServer(_RclpyActionServer):
     """rclpy's action server, safe to destroy while its node spins."""
@@ -145,6 +151,11 @@ class ActionServer(_RclpyActionServer):
         """Return whether the server has something to take; never once destroyed."""
         return _unless_destroyed(self._handle,
                                  lambda: super(ActionServer, self).is_ready(wait_set), False)
+
+    def take_data(self) -> Any:
+        """Take what is ready; nothing once destroyed (the executor takes it unguarded)."""
+        return _unless_destroyed(self._handle,
+                                 lambda: super(ActionServer, self).take_data(), {})
 
 
 class ActionClientPort:

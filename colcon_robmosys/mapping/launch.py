@@ -1,0 +1,158 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""The launch files of a system: the instances each starts, and which it activates."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from colcon_robmosys.mapping.common import Banner, unique
+from colcon_robmosys.model.types import System
+
+#: where the system package installs its parameter file
+PARAMS_FILE = 'cfg/params.yaml'
+
+
+@dataclass(frozen=True)
+class SystemNode:
+    """An instance as a lifecycle node of the launch files."""
+
+    instance: str
+    package: str
+    executable: str
+    name: str
+    namespace: str
+    #: (port, ROS 2 name) for each connected port
+    remappings: tuple[tuple[str, str], ...]
+    activate: bool
+    after: tuple[str, ...]
+    fqn: str
+    #: the instances of the same launch file it waits for
+    activate_after: tuple[str, ...] = ()
+    #: started again when its process ends
+    respawn: bool = False
+    #: seconds for each lifecycle transition; None: the bring-up's default
+    timeout: float | None = None
+    #: the host it runs on; '' for the manager's
+    host: str = ''
+    #: module:class of a Python component (``bringup`` runs shared processes with it)
+    python_class: str = ''
+    #: the rclcpp_components plugin of a C++ component (its shared container loads it)
+    plugin: str = ''
+    #: a lifecycle node (LifecycleNode in the launch files); a plain external node is not
+    lifecycle: bool = True
+
+
+@dataclass(frozen=True)
+class LaunchAlias:
+    """A launch file under its name of the last release, including its new one."""
+
+    banner: Banner
+    package: str
+    old: str
+    new: str
+
+
+@dataclass(frozen=True)
+class LaunchFile:
+    """A launch file, and its activate twin: all instances or one.
+
+    Named as ROS 2 names launch files, ``<name>.launch.py``: the system's
+    ``<system>.launch.py`` starts and activates every instance,
+    ``<system>.nodes.launch.py`` only starts them; each instance has
+    ``<system>.<instance>.launch.py`` and ``<system>.<instance>.nodes.launch.py``
+    (an instance may not be called ``nodes``). The names of the last release,
+    ``launch{suffix}.py`` and ``activate{suffix}.py``, stay as aliases.
+    """
+
+    suffix: str
+    banner: Banner
+    package: str
+    params_file: str
+    nodes: tuple[SystemNode, ...]
+    what: str
+    #: instances it activates that the launch file of their host starts
+    remote: tuple[SystemNode, ...] = ()
+
+    @property
+    def stem(self) -> str:
+        """Return the name the launch files share: the system's, or with an instance."""
+        return f'{self.package}{self.suffix}'
+
+    @property
+    def activate_file(self) -> str:
+        """Return the file name of the launch file that also activates."""
+        return f'{self.stem}.launch.py'
+
+    @property
+    def nodes_file(self) -> str:
+        """Return the file name of the launch file that only starts the nodes."""
+        return f'{self.stem}.nodes.launch.py'
+
+    @property
+    def has_manager(self) -> bool:
+        """Tell whether the file starts the system manager: the system's own file does."""
+        return self.suffix == ''
+
+    @property
+    def node_classes(self) -> str:
+        """Return the launch_ros actions that start its nodes: LifecycleNode, Node."""
+        return ', '.join(sorted({'LifecycleNode' if n.lifecycle else 'Node'
+                                 for n in self.nodes}))
+
+    @property
+    def manager_classes(self) -> str:
+        """Return the launch_ros actions of the file that also starts the manager (a Node)."""
+        return ', '.join(sorted({'LifecycleNode' if n.lifecycle else 'Node'
+                                 for n in self.nodes} | {'Node'}))
+
+    @property
+    def activates_itself(self) -> bool:
+        """Tell whether the file activates its instances itself (one instance, a host)."""
+        return not self.has_manager
+
+    @property
+    def has_aliases(self) -> bool:
+        """Tell whether the last release had the file: the files of hosts are new."""
+        return not self.suffix.startswith('.on_')
+
+    @property
+    def activate_alias(self) -> LaunchAlias:
+        """Return the alias of the activating file under its former name."""
+        return LaunchAlias(self.banner, self.package, f'activate{self.suffix}.py',
+                           self.activate_file)
+
+    @property
+    def nodes_alias(self) -> LaunchAlias:
+        """Return the alias of the starting file under its former name."""
+        return LaunchAlias(self.banner, self.package, f'launch{self.suffix}.py',
+                           self.nodes_file)
+
+
+def launch_files(system: System, nodes: tuple[SystemNode, ...],
+                 banner: Banner) -> tuple[LaunchFile, ...]:
+    """Return the launch files of a system: every instance, each, each host."""
+    local = tuple(n for n in nodes if not n.host)
+    remote = tuple(n for n in nodes if n.host)
+    # the system's files start the instances of the manager's host, and
+    # activate those of every host
+    variants = [('', local, remote, f'every instance of the system {system.name}'
+                 + (' that runs on no host of its own' if remote else ''))]
+    variants += [(f'.{n.instance}', (n,), (), f'the instance {n.instance} '
+                  f'of the system {system.name}') for n in nodes]
+    variants += [(f'.on_{host}', tuple(n for n in remote if n.host == host), (),
+                  f'the instances of the system {system.name} on the host {host}')
+                 for host in unique(n.host for n in remote)]
+    files = []
+    for suffix, selected, elsewhere, what in variants:
+        # a file waits only for instances it activates itself: an instance
+        # started by another file, or left unmanaged, would never be seen
+        managed = {n.instance for n in selected + elsewhere if n.activate}
+
+        def waiting(chosen: tuple[SystemNode, ...]) -> tuple[SystemNode, ...]:
+            return tuple(replace(n, activate_after=tuple(a for a in n.after if a in managed))
+                         for n in chosen)
+        files.append(LaunchFile(suffix, banner, system.package, PARAMS_FILE,
+                                waiting(selected), what, waiting(elsewhere)))
+    return tuple(files)

@@ -1,0 +1,52 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""Hand-written nodes in a system: external components, on real rclpy.
+
+test_workspace/src/handwritten_nodes is an ordinary ament_python package of two
+rclpy nodes nobody generates (a plain talker, a lifecycle listener);
+handwritten_system models them as external components and wires them to a
+generated relay. The launch files and the system manager start them with their
+remappings; the manager brings up the lifecycle one and leaves the plain one be.
+"""
+
+from __future__ import annotations
+
+import re
+import signal
+import sys
+
+import pytest
+
+from colcon_robmosys.devtools.ros_env import background, free_domain_id
+from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
+from conftest import requires_ros
+
+pytestmark = [pytest.mark.integration, requires_ros]
+
+SYSTEM = 'handwritten_system'
+
+
+def test_hand_written_nodes_come_up_with_a_generated_one_and_data_flows(test_workspace_built):
+    from std_srvs.srv import Trigger
+    executable = test_workspace_built.install / SYSTEM / 'lib' / SYSTEM / 'bringup'
+    domain_id = free_domain_id()
+    with background([sys.executable, str(executable)], env=test_workspace_built.env(domain_id),
+                    stop_timeout=30) as bringup, LifecycleDriver(domain_id) as driver:
+        # the relay (generated) and the listener (hand-written, lifecycle) are managed;
+        # the plain talker is started only
+        assert wait_until(lambda: 'bringup: 2 of 2 managed instances active' in
+                          bringup.output(), timeout=90), bringup.output()
+        # talker --chatter--> relay --heard--> listener, under the nodes' own names
+        assert wait_until(lambda: re.search(r'\[listener\]: heard: hello \d+',
+                                            bringup.output()) is not None, 30), bringup.output()
+        assert driver.state('/listener') == 'active'
+        report = driver.call(Trigger, f'/{SYSTEM}_bringup/report', Trigger.Request())
+        assert report.success, report.message
+        assert 'talker: running' in report.message.splitlines(), report.message
+        bringup.proc.send_signal(signal.SIGINT)
+        assert bringup.proc.wait(timeout=60) == 0, bringup.output()
+        output = bringup.output()
+    steps = re.findall(r'bringup: (deactivate|cleanup) (\w+)', output)
+    assert steps == [('deactivate', 'listener'), ('cleanup', 'listener'),
+                     ('deactivate', 'relay'), ('cleanup', 'relay')], output
+    assert 'Traceback' not in output, output
