@@ -109,6 +109,8 @@ def test_layout_of_the_reference(generated_cpp):
         'src-skel/cpp_subscriber/Subscriber_impl.hpp',
         'src-skel/cpp_subscriber/Subscriber_impl.cpp',
         'src/cpp_subscriber/Subscriber_impl.hpp', 'src/cpp_subscriber/Subscriber_impl.cpp',
+        # the model, installed for the workspaces that build on this one
+        'robmosys/robmosys.yaml',
     }
     # the skeleton is regenerated but never built
     cmake = (generated_cpp / 'cpp_subscriber' / 'CMakeLists.txt').read_text()

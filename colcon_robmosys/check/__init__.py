@@ -15,6 +15,7 @@ from colcon_robmosys.check.cache import CheckedFile, file_key, ModelCache
 from colcon_robmosys.check.cycles import CycleRules
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.check.types import TypeRules
+from colcon_robmosys.check.underlays import installed_models
 from colcon_robmosys.check.wiring import WiringRules
 from colcon_robmosys.errors import Diagnostic, RobmosysError
 from colcon_robmosys.model.build import FileBuilder
@@ -178,6 +179,16 @@ def load_workspace(paths: Iterable[Path],
     diagnostics: list[Diagnostic] = []
     broken: dict[str, list[tuple[str, str]]] = {}
     keys: dict[str, str] = {}
+
+    def checked_file(path: Path, raw: bytes) -> CheckedFile:
+        key = keys[str(path)] = file_key(path, raw)
+        checked = cache.get(key) if cache is not None else None
+        if checked is None:
+            checked = check_file(path, raw)
+            if cache is not None:
+                cache.put(key, checked)
+        return checked
+
     for path in sorted(set(paths)):
         try:
             raw = read_model_bytes(path)
@@ -185,22 +196,25 @@ def load_workspace(paths: Iterable[Path],
             diagnostics.extend(exc.diagnostics)
             broken[str(path)] = []
             continue
-        key = keys[str(path)] = file_key(path, raw)
-        checked = cache.get(key) if cache is not None else None
-        if checked is None:
-            checked = check_file(path, raw)
-            if cache is not None:
-                cache.put(key, checked)
+        checked = checked_file(path, raw)
         if checked.model_file is not None:
             # the models that passed: the rules of the workspace check them
             files.append(checked.model_file)
         if checked.diagnostics:
             diagnostics.extend(checked.diagnostics)
             broken[str(path)] = list(checked.declared)
+    index = index or InterfaceIndex.from_environment()
+    # then what the underlays installed, for the packages the workspace lacks
+    present = {model_key(m) for f in files for m in f.models} | {
+        name for declared in broken.values() for name, _ in declared}
+    underlay_files, underlay_problems = installed_models(
+        index, present, lambda path: checked_file(path, path.read_bytes()))
+    files += underlay_files
+    diagnostics += underlay_problems
     if cache is not None:
         cache.prune(set(keys.values()))
     checker = WorkspaceChecker(
-        files, index or InterfaceIndex.from_environment(),
+        files, index,
         (name for declared in broken.values() for name, _ in declared))
     checker.check()
     diagnostics.extend(checker.diagnostics)

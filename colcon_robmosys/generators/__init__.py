@@ -10,7 +10,7 @@ everything goes through one renderer and one writer.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import os
 from pathlib import Path
 
@@ -43,6 +43,9 @@ __all__ = ['create_missing_user_files', 'FileSpec', 'generate_package',
            'GenerationReport', 'MANIFEST', 'PackagePlan', 'plan_package',
            'read_manifest', 'StampStore', 'unchanged_package', 'UserFile']
 
+#: where a generated package holds its model file, which it installs
+INSTALLED_MODEL = 'robmosys/robmosys.yaml'
+
 
 @dataclass
 class GenerationReport:
@@ -66,15 +69,28 @@ def plan_package(workspace: Workspace, package: str) -> PackagePlan:
             package, f"no model generates the package '{package}'")
     model_dir = Path(model.info.model_file).parent
     if isinstance(model, ServiceDefinition):
-        return interfaces_package(plan_interfaces(model), model_dir)
-    if isinstance(model, Component):
-        plan = plan_component(model)
+        plan = interfaces_package(plan_interfaces(model), model_dir)
+    elif isinstance(model, Component):
+        component = plan_component(model)
         folders = user_folders(model, workspace)
         if model.language is Language.PYTHON:
-            return python_package(spell_python(model, plan, folders),
-                                  model_dir)
-        return cpp_package(spell_cpp(model, plan, folders), model_dir)
-    return system_package(plan_system(model, workspace), model_dir)
+            plan = python_package(spell_python(model, component, folders), model_dir)
+        else:
+            plan = cpp_package(spell_cpp(model, component, folders), model_dir)
+    else:
+        plan = system_package(plan_system(model, workspace), model_dir)
+    # the model, installed with the package: workspaces built on this one use it
+    text = Path(model.info.model_file).read_text(encoding='utf-8')
+    return replace(plan, files=plan.files + (
+        FileSpec(INSTALLED_MODEL, 'common/model.yaml.jinja', InstalledModel(package, text)),))
+
+
+@dataclass(frozen=True)
+class InstalledModel:
+    """The model file of a package, as it installs it (share/<package>/robmosys/)."""
+
+    package: str
+    text: str
 
 
 def create_missing_user_files(plan: PackagePlan) -> list[Path]:

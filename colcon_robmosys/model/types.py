@@ -44,6 +44,8 @@ class ModelFile:
     service_definitions: tuple[ServiceDefinition, ...] = ()
     components: tuple[Component, ...] = ()
     systems: tuple[System, ...] = ()
+    #: a model installed by an underlay (share/<package>/robmosys/): built already
+    installed: bool = False
 
     @property
     def models(self) -> tuple[Model, ...]:
@@ -76,8 +78,12 @@ class Workspace:
 
     @property
     def generated_models(self) -> tuple[Model, ...]:
-        """Return the models that generate a package: all but external components."""
-        return tuple(m for m in self.models
+        """Return the models that generate a package of this workspace.
+
+        Not external components (a hand-written package), nor the models an
+        underlay installed (built there).
+        """
+        return tuple(m for f in self.files if not f.installed for m in f.models
                      if not (isinstance(m, Component) and m.external))
 
     def model(self, package: str) -> Model | None:

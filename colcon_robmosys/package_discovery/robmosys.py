@@ -93,10 +93,9 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
         print_diagnostics(
             d for d in result.diagnostics if d.severity == 'error')
         descriptors = set()
-        for model in result.workspace.models:
-            if isinstance(model, Component) and model.external:
-                # a hand-written node: its package is the user's own
-                continue
+        # not external components (a hand-written package), nor models an
+        # underlay installed (built there)
+        for model in result.workspace.generated_models:
             kind = 'interfaces' if isinstance(model, ServiceDefinition) else \
                 'component' if isinstance(model, Component) else 'system'
             dependencies = model_dependencies(model)
