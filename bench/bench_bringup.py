@@ -37,6 +37,7 @@ from typing import Sequence
 
 import yaml
 
+from bench_runtime import build
 from benchlib import best, print_end, print_machine, ratio, spread, table
 from colcon_robmosys.devtools import ros_env
 
@@ -75,16 +76,6 @@ def write_workspace(src: Path, instances: int) -> None:
     path.parent.mkdir(parents=True)
     path.write_text(yaml.safe_dump({'robmosys': 1, 'defaults': METADATA,
                                     'systems': [system]}, sort_keys=False))
-
-
-def build(root: Path) -> Path:
-    """Build the workspace with colcon; return the install folder."""
-    env = ros_env.loopback_env(ros_env.free_domain_id())
-    result = ros_env.run([str(Path(sys.prefix) / 'bin' / 'colcon'), 'build'],
-                         env=env, cwd=root, timeout=1800)
-    if result.returncode:
-        raise RuntimeError(f'colcon build failed:\n{result.stdout}{result.stderr}')
-    return root / 'install'
 
 
 def subset(install: Path, names: Sequence[str], dest: Path) -> Path:
@@ -158,7 +149,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     with tempfile.TemporaryDirectory(prefix='robmosys-bench-bringup-') as tmp:
         root = Path(tmp)
         write_workspace(root / 'src', largest)
-        install = build(root)
+        install = build(root)  # the same build as bench_runtime's
         names = [f'{kind}_{i}' for i in range((largest + 1) // 2) for kind in ('beat', 'hear')]
         cases: dict[tuple[str, str], tuple[Path, int]] = {
             ('single publisher', 'per-instance'): (subset(install, ['beat_0'],
