@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from colcon_robmosys.check import load_model_file
-from colcon_robmosys.model.types import ModelFile, Workspace
+from colcon_robmosys.model.types import model_key, ModelFile, Workspace
 
 VALID = sorted((Path(__file__).resolve().parent / 'models' / 'valid').glob('*.yaml'))
 
@@ -31,8 +31,12 @@ def test_every_model_is_found(files):
     assert workspace.models == tuple(models)
     assert len(models) > len(files)  # multi_model.yaml holds several
     for model in models:
-        assert workspace.model(model.package) is model
+        # an external component is found by package/executable: a package may hold several
+        assert workspace.model(model_key(model)) is model
     assert workspace.model('no_such_package') is None
+    talker = workspace.model('demo_nodes_py/talker')
+    assert talker is not None and talker.package == 'demo_nodes_py'
+    assert workspace.model('demo_nodes_py') is None
 
 
 def test_a_package_claimed_twice_keeps_its_first_model(files):

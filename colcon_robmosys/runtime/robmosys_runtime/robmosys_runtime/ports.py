@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import threading
 import time
-from typing import Any, Callable, Optional, TypeVar
+from typing import Any, Callable, Optional
 
 from rclpy.action import ActionClient as _RclpyActionClient
 from rclpy.action import ActionServer as _RclpyActionServer
@@ -79,10 +79,7 @@ class QueryClient:
         self._node.destroy_client(self.client)
 
 
-Result = TypeVar('Result')
-
-
-def _unless_destroyed(handle: Any, call: Callable[[], Result], otherwise: Result) -> Result:
+def _unless_destroyed(handle: Any, call: Callable[[], Any], otherwise: Any) -> Any:
     """
     Return call() on an action entity in a wait set, or otherwise once it is destroyed.
 
