@@ -92,8 +92,10 @@ def bring_up(install: Path, description: Path, layout: str, count: int,
     """
     Bring a system up and down once; return the outcome and the seconds it took to come up.
 
-    The outcome is ``up``, ``failed`` (bringup reported a failure) or ``hung``
-    (no report within timeout).
+    The outcome is ``up``, ``failed`` (bringup reported a failure), ``hung``
+    (no report within timeout: bringup reports by ``--start-timeout`` plus two
+    transition timeouts at the latest) or ``stuck`` (up, but not ended 60 s after
+    SIGINT: the bring-down hung).
     """
     env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
     executable = install / SYSTEM / 'lib' / SYSTEM / 'bringup'
@@ -102,7 +104,7 @@ def bring_up(install: Path, description: Path, layout: str, count: int,
         start = time.monotonic()
         process = subprocess.Popen(
             [sys.executable, str(executable), '--description', str(description),
-             f'--{layout}', '--timeout', str(timeout)],
+             f'--{layout}', '--timeout', '30', '--start-timeout', '90'],
             env=env, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
             start_new_session=True)
         outcome, took = 'hung', timeout
@@ -125,7 +127,7 @@ def bring_up(install: Path, description: Path, layout: str, count: int,
                 except subprocess.TimeoutExpired:
                     os.killpg(process.pid, signal.SIGKILL)
                     process.wait()
-                    outcome = 'hung'
+                    outcome = 'stuck'
     return outcome, took
 
 
@@ -141,8 +143,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument('--hang-size', type=int, default=20)
     parser.add_argument('--hang-layout', choices=('per-instance', 'shared'),
                         default='per-instance')
-    parser.add_argument('--timeout', type=float, default=120.0,
-                        help='seconds a bring-up may take before it counts as hung')
+    parser.add_argument('--timeout', type=float, default=240.0,
+                        help='seconds a bring-up may take before it counts as hung (bringup '
+                        'itself reports within 90 + 2 x 30 s)')
     args = parser.parse_args(argv)
     print_machine('bring-up: N instances vs the slowest single instance, one run')
     largest = max(args.sizes + [args.hang_size])
@@ -184,14 +187,15 @@ def main(argv: Sequence[str] | None = None) -> int:
             if samples:
                 print(f'  {case[0]}, {case[1]}: {spread(samples)}')
         hang_path = subset(install, names[:args.hang_size], root / 'hang.json')
-        outcomes: dict[str, int] = {'up': 0, 'failed': 0, 'hung': 0}
+        outcomes: dict[str, int] = {'up': 0, 'failed': 0, 'hung': 0, 'stuck': 0}
         for _ in range(args.hang_runs):
             outcome, _ = bring_up(install, hang_path, args.hang_layout, args.hang_size,
                                   args.timeout)
             outcomes[outcome] += 1
         print(f'{args.hang_runs} bring-ups in a row of {args.hang_size} instances '
               f'({args.hang_layout}): {outcomes["up"]} up, {outcomes["failed"]} failed, '
-              f'{outcomes["hung"]} hung (timeout {args.timeout:g} s)')
+              f'{outcomes["hung"]} hung (timeout {args.timeout:g} s), {outcomes["stuck"]} '
+              'stuck at bring-down')
     print_end()
     return 0
 

@@ -105,6 +105,7 @@ def test_bringup_benchmark_prints_ratios_and_counts_hangs(capsys):
     assert len(re.findall(rf'^\| 4 instances +\| (per-instance|shared) .* {RATIO} +\|', out,
                           re.MULTILINE)) == 2, out
     assert '2 bring-ups in a row of 2 instances (per-instance): 2 up, 0 failed, 0 hung' in out
+    assert ', 0 stuck at bring-down' in out
 
 
 def test_cpp_pairs_are_skipped_without_rclcpp_and_run_with_it(tmp_path):

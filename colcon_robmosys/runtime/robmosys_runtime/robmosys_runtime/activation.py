@@ -13,7 +13,6 @@ after are active. A failure is reported with what it holds back.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 import threading
 import time
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
@@ -22,6 +21,7 @@ from lifecycle_msgs.msg import Transition
 from lifecycle_msgs.srv import ChangeState, GetState
 from rclpy.node import Node
 from robmosys_runtime import levels
+from robmosys_runtime.levels import Outcome
 
 #: transition -> the state a node is in once it went through it
 GOAL_STATES = {Transition.TRANSITION_CONFIGURE: 'inactive',
@@ -42,20 +42,6 @@ class _Stopped(Exception):
 
 class _Failed(Exception):
     """An instance that cannot be brought up, and why."""
-
-
-@dataclass
-class Outcome:
-    """What became of the instances: active, failed (and why), held back (by what)."""
-
-    active: List[str] = field(default_factory=list)
-    failed: Dict[str, str] = field(default_factory=dict)
-    held_back: Dict[str, List[str]] = field(default_factory=dict)
-
-    @property
-    def ok(self) -> bool:
-        """Tell whether every instance is active."""
-        return not self.failed and not self.held_back
 
 
 class SystemActivation:
@@ -178,31 +164,46 @@ class SystemActivation:
         """
         Deactivate, then clean up, every instance, those that come after others first.
 
-        :returns: what was done, in order (``deactivate <name>``, ``cleanup <name>``)
+        An instance goes down once every instance that comes after it is down;
+        the instances of one such level go down at once, each in a thread.
+
+        :returns: what was done (``deactivate <name>``, ``cleanup <name>``): each
+            instance's steps in order, a level's after the next level's
         """
         for thread in self._threads:
             thread.join()
         # the bring-up is over (stopped or not): the services are used again
         self._stop.clear()
-        done = []
-        for name in reversed(self.order()):
-            if name in self._failed:
-                continue
-            try:
-                wait = min(timeout, self._timeouts.get(name, timeout))
-                state = self._get_state(name, timeout=wait)
-                if state == 'active':
-                    self._change(name, Transition.TRANSITION_DEACTIVATE, wait)
-                    done.append(f'deactivate {name}')
-                    state = 'inactive'
-                if state == 'inactive':
-                    self._change(name, Transition.TRANSITION_CLEANUP, wait)
-                    done.append(f'cleanup {name}')
-                    state = 'unconfigured'
-                self._set(name, state or 'unknown')
-            except (_Failed, _Stopped) as problem:
-                self._report('error', f'instance {name} could not be brought down: {problem}')
+        done: List[str] = []
+        remaining = [n for n in reversed(self.order()) if n not in self._failed]
+        while remaining:
+            level = [n for n in remaining
+                     if not any(n in self._after[m] for m in remaining)] or remaining
+            threads = [threading.Thread(target=self._bring_down_one,
+                                        args=(name, timeout, done), daemon=True,
+                                        name=f'bring down {name}') for name in level]
+            for thread in threads:
+                thread.start()
+            for thread in threads:
+                thread.join()
+            remaining = [n for n in remaining if n not in level]
         return done
+
+    def _bring_down_one(self, name: str, timeout: float, done: List[str]) -> None:
+        try:
+            wait = min(timeout, self._timeouts.get(name, timeout))
+            state = self._get_state(name, timeout=wait)
+            if state == 'active':
+                self._change(name, Transition.TRANSITION_DEACTIVATE, wait)
+                done.append(f'deactivate {name}')
+                state = 'inactive'
+            if state == 'inactive':
+                self._change(name, Transition.TRANSITION_CLEANUP, wait)
+                done.append(f'cleanup {name}')
+                state = 'unconfigured'
+            self._set(name, state or 'unknown')
+        except (_Failed, _Stopped) as problem:
+            self._report('error', f'instance {name} could not be brought down: {problem}')
 
     def order(self) -> List[str]:
         """Return the instances in an order where each comes after those it names."""

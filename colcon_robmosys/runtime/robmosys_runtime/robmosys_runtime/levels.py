@@ -1,10 +1,11 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
-"""The order of a system's instances: which comes after which (the model's ``after``)."""
+"""The order of a system's instances (the model's ``after``), and what became of them."""
 
 from __future__ import annotations
 
-from typing import List, Mapping, Sequence, Set
+from dataclasses import dataclass, field
+from typing import Dict, List, Mapping, Sequence, Set
 
 #: instance name -> the instances that must be active first
 After = Mapping[str, Sequence[str]]
@@ -49,3 +50,17 @@ def successors(after: After, name: str) -> List[str]:
                 waiting.add(candidate)
                 grew = True
     return sorted(waiting)
+
+
+@dataclass
+class Outcome:
+    """What became of the instances: active, failed (and why), held back (by what)."""
+
+    active: List[str] = field(default_factory=list)
+    failed: Dict[str, str] = field(default_factory=dict)
+    held_back: Dict[str, List[str]] = field(default_factory=dict)
+
+    @property
+    def ok(self) -> bool:
+        """Tell whether every instance is active."""
+        return not self.failed and not self.held_back
