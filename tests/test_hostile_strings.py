@@ -266,6 +266,12 @@ def test_hostile_text_is_only_data(tmp_path, plain, text):
             assert [m.get('email') for m in root.iter('maintainer')] == ['a@example.com']
             parse_package_string(data)  # what ament_cmake reads
             seen.add('xml')
+        elif path.parent.name == 'robmosys' and path.suffix == '.yaml':
+            # the installed copy of the package's model reads as the model itself
+            package = path.relative_to(out).parts[0]
+            source = tmp_path / 'src' / package / 'robmosys.yaml'
+            assert yaml.safe_load(data) == yaml.safe_load(source.read_text(encoding='utf-8'))
+            seen.add('installed model')
         elif path.suffix == '.yaml':
             params = yaml.safe_load(data)
             assert _yaml_shape(params) == _yaml_shape(yaml.safe_load(plain_data))
@@ -296,7 +302,8 @@ def test_hostile_text_is_only_data(tmp_path, plain, text):
             # CMakeLists.txt, diagrams: no free text goes there
             # (a generator that starts writing some must check it parses here)
             assert data == plain_data, f'{name}: model text reached a file not checked here'
-    assert seen == {'python', 'docstring', 'xml', 'yaml', 'msg', 'cpp', 'cpp comment'}
+    assert seen == {'python', 'docstring', 'xml', 'yaml', 'msg', 'cpp', 'cpp comment',
+                    'installed model'}
 
 
 def test_no_control_character_reaches_a_model(tmp_path):
