@@ -8,11 +8,8 @@ Offline: rosdep 0.27 reads a local source (ROSDEP_SOURCE_PATH naming a list file
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 import shutil
-import subprocess
-import sys
 import xml.etree.ElementTree as ET
 
 import pytest
@@ -23,8 +20,8 @@ from colcon_robmosys.generators import create_missing_user_files, generate_packa
 from colcon_robmosys.generators import plan_package
 from colcon_robmosys.runtime import runtime_source
 from harness.fake_ament import fake_ament_index
+from harness.rosdep import ROSDEP, rosdep, rosdep_env
 
-ROSDEP = Path(sys.prefix) / 'bin' / 'rosdep'
 pytestmark = pytest.mark.skipif(not ROSDEP.is_file(), reason='rosdep is not installed')
 
 #: the system dependencies of the models -> the Ubuntu packages rosdep names
@@ -61,35 +58,6 @@ def _depends(package_xml: Path) -> list[str]:
     return [d.text or '' for d in ET.parse(package_xml).getroot().iter('depend')]
 
 
-def _rosdep_env(tmp_path: Path, keys: set[str]) -> dict[str, str]:
-    """Return the environment of an offline rosdep that knows the keys."""
-    root = tmp_path / 'rosdep'
-    (root / 'sources').mkdir(parents=True)
-    # ROS packages resolve to their binary packages, as the rosdistro says
-    rules = {key: {'ubuntu': [SYSTEM.get(key, f"ros-kilted-{key.replace('_', '-')}")]}
-             for key in keys}
-    (root / 'keys.yaml').write_text(yaml.safe_dump(rules))
-    (root / 'sources' / '10-local.list').write_text(f"yaml {(root / 'keys.yaml').as_uri()}\n")
-    (root / 'distribution.yaml').write_text(yaml.safe_dump({
-        'type': 'distribution', 'version': 2,
-        'release_platforms': {'ubuntu': ['noble']}, 'repositories': {}}))
-    (root / 'index-v4.yaml').write_text(yaml.safe_dump({
-        'type': 'index', 'version': 4, 'distributions': {'kilted': {
-            'distribution': ['distribution.yaml'], 'distribution_status': 'active',
-            'distribution_type': 'ros2', 'python_version': 3}}}))
-    env = dict(os.environ, ROSDEP_SOURCE_PATH=str(root / 'sources'),
-               ROSDISTRO_INDEX_URL=(root / 'index-v4.yaml').as_uri(),
-               ROS_HOME=str(root / 'home'), ROS_DISTRO='kilted', ROS_PYTHON_VERSION='3')
-    return env
-
-
-def _rosdep(args: list[str], env: dict[str, str]) -> str:
-    result = subprocess.run([str(ROSDEP), *args], env=env, capture_output=True, text=True,
-                            timeout=120)
-    assert result.returncode == 0, result.stdout + result.stderr
-    return result.stdout
-
-
 def test_system_depends_are_rosdep_keys_that_resolve(tmp_path):
     out = _generate(tmp_path)
     numbers, solver = _depends(out / 'numbers' / 'package.xml'), \
@@ -105,13 +73,13 @@ def test_system_depends_are_rosdep_keys_that_resolve(tmp_path):
     shutil.copytree(runtime_source(), out / 'robmosys_runtime')
     keys = {e.text or '' for path in out.glob('*/package.xml')
             for e in ET.parse(path).getroot() if e.tag.endswith('depend')}
-    env = _rosdep_env(tmp_path, keys)
-    _rosdep(['update'], env)
-    listed = _rosdep(['keys', '--from-paths', str(out), '--ignore-src'], env).split()
+    env = rosdep_env(tmp_path, keys, SYSTEM)
+    rosdep(['update'], env)
+    listed = rosdep(['keys', '--from-paths', str(out), '--ignore-src'], env).split()
     assert set(SYSTEM) <= set(listed), listed
     assert 'robmosys_runtime' not in listed
-    simulated = _rosdep(['install', '--simulate', '--reinstall', '--from-paths', str(out),
-                         '--ignore-src', '-y', '--os=ubuntu:noble'], env)
+    simulated = rosdep(['install', '--simulate', '--reinstall', '--from-paths', str(out),
+                        '--ignore-src', '-y', '--os=ubuntu:noble'], env)
     for system_package in SYSTEM.values():
         assert system_package in simulated, simulated
     assert 'ros-kilted-std-msgs' in simulated, simulated

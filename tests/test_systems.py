@@ -26,7 +26,7 @@ from colcon_robmosys.devtools.system import (
     activate_launch_file, read_activate_after, read_launch_file)
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
-from colcon_robmosys.model.types import Component, Pattern, Role, System, Workspace
+from colcon_robmosys.model.types import Component, Pattern, PortRef, Role, System, Workspace
 from conftest import colcon, requires_ros, TEST_WORKSPACE
 
 #: What the launch files pass besides the node's identity (launch_ros API).
@@ -61,9 +61,10 @@ def expected_remappings(system: System) -> dict[str, set[tuple[str, str]]]:
     """Return instance -> (port, name) remappings, by the documented rules."""
     remappings: dict[str, set[tuple[str, str]]] = {i.name: set() for i in system.instances}
     for connection in system.connections:
-        ends = (connection.source, connection.target)
-        provided = next(e for e in ends
-                        if _component(system, e.instance).port(e.port).role is Role.PROVIDED)
+        ends = connection.ends
+        # a connection of one port to a name outside the model: named from that port
+        provided = next((e for e in ends if _component(system, e.instance).port(e.port).role
+                         is Role.PROVIDED), ends[0])
         namespace = system.instance(provided.instance).namespace.strip('/')
         prefix = f'/{namespace}' if namespace else ''
         if connection.topic is None:
@@ -227,21 +228,29 @@ def test_diagram_shows_instances_ports_and_typed_connections(generated, package)
         for port in component.ports:
             assert f'<{port.name}> {port.name} ({port.role.value} {port.pattern.value})' in line
         assert ('style=dashed' in line) is (not instance.activate)
-    edge = r'^  "(\w+)":(\w+) -> "(\w+)":(\w+) \[label="(\w+) ([\w/]+)\\n([\w/]+)"\];$'
+    # a name outside the model is a node of its own, without ports
+    edge = (r'^  "([\w/]+)"(?::(\w+))? -> "([\w/]+)"(?::(\w+))? '
+            r'\[label="(\w+) ([\w/]+)\\n([\w/]+)"\];$')
     edges = re.findall(edge, dot, re.MULTILINE)
     assert len(edges) == len(system.connections)
     remappings = expected_remappings(system)
     for connection in system.connections:
-        ends = (connection.source, connection.target)
+        ends = connection.ends
         port = _component(system, ends[0].instance).port(ends[0].port)
         by_role = {_component(system, e.instance).port(e.port).role: e for e in ends}
+        if connection.target is None:
+            name = dict(remappings[ends[0].instance])[port.node_name]
+            assert f'  "{name}" [shape=plaintext, label="{name}"];' in dot
+            other = Role.REQUIRED if port.role is Role.PROVIDED else Role.PROVIDED
+            by_role[other] = PortRef(name, '', connection.location)
         # arrows follow the data: to the server of send, query and action
         if port.pattern in (Pattern.SEND, Pattern.QUERY, Pattern.ACTION):
             source, target = by_role[Role.REQUIRED], by_role[Role.PROVIDED]
         else:
             source, target = by_role[Role.PROVIDED], by_role[Role.REQUIRED]
-        source_port = _component(system, source.instance).port(source.port)
-        name = dict(remappings[source.instance])[source_port.node_name]
+        named = source if source.port else target
+        named_port = _component(system, named.instance).port(named.port)
+        name = dict(remappings[named.instance])[named_port.node_name]
         assert (source.instance, source.port, target.instance, target.port,
                 port.pattern.value, str(port.type), name) in edges
 

@@ -113,3 +113,39 @@ def test_a_name_of_the_workspace_hides_the_underlay_one(underlay, tmp_path):
     # the underlay's others are known, and generate nothing here
     assert result.workspace.model('publisher') is not None
     assert [m.package for m in result.workspace.generated_models] == ['subscriber']
+
+
+def _fake_install(prefix: Path, packages: list[str]) -> Path:
+    """Install the models of test_workspace packages into a prefix, as a build does."""
+    for package in packages:
+        share = prefix / 'share'
+        (share / package / 'robmosys').mkdir(parents=True)
+        shutil.copy(TEST_WORKSPACE / 'src' / package / 'robmosys.yaml',
+                    share / package / 'robmosys' / 'robmosys.yaml')
+        index = share / 'ament_index' / 'resource_index' / 'robmosys_models'
+        index.mkdir(parents=True, exist_ok=True)
+        (index / package).touch()
+    return prefix
+
+
+def test_a_package_two_underlays_install_is_reported_with_both(tmp_path):
+    """The first prefix wins, as for packages; the workspace models using it are warned."""
+    from colcon_robmosys.check import find_model_files, load_workspace
+    from colcon_robmosys.check.index import InterfaceIndex
+    first = _fake_install(tmp_path / 'first', ['simple_msgs', 'publisher', 'subscriber'])
+    second = _fake_install(tmp_path / 'second', ['publisher'])
+    src = tmp_path / 'src' / 'b'
+    src.mkdir(parents=True)
+    (src / 'robmosys.yaml').write_text(MODEL_B)
+    result = load_workspace(find_model_files([src]),
+                            InterfaceIndex([first, second, Path(sys.prefix)]))
+    assert result.errors == []
+    used = first / 'share' / 'publisher' / 'robmosys' / 'robmosys.yaml'
+    hidden = second / 'share' / 'publisher' / 'robmosys' / 'robmosys.yaml'
+    assert result.workspace.model('publisher').info.model_file == str(used)
+    # the system uses it; the component of B does not
+    assert [str(w) for w in result.warnings_of('chained_system')] == [
+        f'{src / "robmosys.yaml"}:19:14: warning: package \'publisher\' is installed by more '
+        f"than one underlay: the model '{used}' is used (its prefix comes first in "
+        f"AMENT_PREFIX_PATH), '{hidden}' not"]
+    assert result.warnings_of('map_counter') == []

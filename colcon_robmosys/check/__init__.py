@@ -15,7 +15,7 @@ from colcon_robmosys.check.cache import CheckedFile, file_key, ModelCache
 from colcon_robmosys.check.cycles import CycleRules
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.check.types import TypeRules
-from colcon_robmosys.check.underlays import installed_models
+from colcon_robmosys.check.underlays import installed_models, shadow_message
 from colcon_robmosys.check.wiring import WiringRules
 from colcon_robmosys.errors import Diagnostic, RobmosysError
 from colcon_robmosys.model.build import FileBuilder
@@ -207,16 +207,22 @@ def load_workspace(paths: Iterable[Path],
     # then what the underlays installed, for the packages the workspace lacks
     present = {model_key(m) for f in files for m in f.models} | {
         name for declared in broken.values() for name, _ in declared}
-    underlay_files, underlay_problems = installed_models(
+    underlays = installed_models(
         index, present, lambda path: checked_file(path, path.read_bytes()))
-    files += underlay_files
-    diagnostics += underlay_problems
+    files += underlays.files
+    diagnostics += underlays.diagnostics
     if cache is not None:
         cache.prune(set(keys.values()))
     checker = WorkspaceChecker(
         files, index,
         (name for declared in broken.values() for name, _ in declared))
     checker.check()
+    for model_file in files:
+        for model in () if model_file.installed else model_file.models:
+            for package in model_dependencies(model):
+                if package in underlays.shadowed:
+                    checker.warning(model.package, model.info.location, shadow_message(
+                        package, underlays.shadowed[package]))
     diagnostics.extend(checker.diagnostics)
     return LoadResult(Workspace(tuple(files)), sorted(set(diagnostics)),
                       broken, {package: sorted(set(warnings)) for package,

@@ -8,11 +8,14 @@ and registers the ament index resource ``robmosys_models``. A workspace then ref
 to the service definitions, components and systems of its underlays by package
 name, as a package.xml does: the workspace's own models first, then each prefix
 of ``AMENT_PREFIX_PATH`` in order (the first that has a package wins, as for
-packages).
+packages). A package two underlays install is a warning for each workspace
+model that uses it, naming both; one the workspace models itself is not (it
+overlays the underlay's, which colcon reports).
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
@@ -25,31 +28,50 @@ from colcon_robmosys.model.types import ModelFile
 RESOURCE_TYPE = 'robmosys_models'
 
 
-def installed_model_paths(index: InterfaceIndex, present: set[str]) -> dict[str, Path]:
-    """Return package -> its installed model file, for the packages not in present."""
-    found: dict[str, Path] = {}
+def installed_model_paths(index: InterfaceIndex, present: set[str]
+                          ) -> dict[str, list[Path]]:
+    """Return package -> its installed model files, for the packages not in present.
+
+    The first file of a package is the one used; the others are hidden by it.
+    """
+    found: dict[str, list[Path]] = {}
+    seen: set[Path] = set()
     for prefix in index.prefixes:
         folder = prefix / 'share' / 'ament_index' / 'resource_index' / RESOURCE_TYPE
-        if not folder.is_dir():
-            continue
+        if not folder.is_dir() or folder.resolve() in seen:
+            continue  # a prefix named twice is one underlay
+        seen.add(folder.resolve())
         for marker in sorted(folder.iterdir()):
             path = prefix / 'share' / marker.name / 'robmosys' / 'robmosys.yaml'
-            if marker.name not in present and marker.name not in found and path.is_file():
-                found[marker.name] = path
+            if marker.name not in present and path.is_file():
+                found.setdefault(marker.name, []).append(path)
     return found
 
 
+@dataclass
+class Underlays:
+    """What the underlays installed for a workspace."""
+
+    files: list[ModelFile] = field(default_factory=list)
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    #: package -> its installed model files, where more than one underlay
+    #: installs it: the first is used
+    shadowed: dict[str, list[Path]] = field(default_factory=dict)
+
+
 def installed_models(index: InterfaceIndex, present: set[str],
-                     check: Callable[[Path], CheckedFile]
-                     ) -> tuple[list[ModelFile], list[Diagnostic]]:
+                     check: Callable[[Path], CheckedFile]) -> Underlays:
     """Return the models of the packages underlays installed, and their problems.
 
     :param present: the packages (and external components) the workspace models
     :param check: loads and checks one file (through the cache of checked files)
     """
-    files: list[ModelFile] = []
-    diagnostics: list[Diagnostic] = []
-    for package, path in sorted(installed_model_paths(index, present).items()):
+    underlays = Underlays()
+    files, diagnostics = underlays.files, underlays.diagnostics
+    for package, paths in sorted(installed_model_paths(index, present).items()):
+        path = paths[0]
+        if len(paths) > 1:
+            underlays.shadowed[package] = paths
         checked = check(path)
         diagnostics.extend(checked.diagnostics)
         if checked.model_file is None:
@@ -61,4 +83,12 @@ def installed_models(index: InterfaceIndex, present: set[str],
             return tuple(m for m in models if m.package == package)
         files.append(ModelFile(loaded.path, own(loaded.service_definitions),
                                own(loaded.components), own(loaded.systems), installed=True))
-    return files, diagnostics
+    return underlays
+
+
+def shadow_message(package: str, paths: list[Path]) -> str:
+    """Return the warning about a package more than one underlay installs."""
+    hidden = ', '.join(f"'{p}'" for p in paths[1:])
+    return (f"package '{package}' is installed by more than one underlay: the model "
+            f"'{paths[0]}' is used (its prefix comes first in AMENT_PREFIX_PATH), "
+            f'{hidden} not')

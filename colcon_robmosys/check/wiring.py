@@ -73,7 +73,7 @@ class WiringRules(CheckContext):
         names = _Names()
         for connection in system.connections:
             ends: list[tuple[PortRef, Port]] = []
-            for ref in (connection.source, connection.target):
+            for ref in connection.ends:
                 component = components.get(ref.instance)
                 if system.instance(ref.instance) is None:
                     self.error(ref.location,
@@ -89,9 +89,10 @@ class WiringRules(CheckContext):
                     else:
                         ends.append((ref, port))
                         connected.add((ref.instance, ref.port))
-            if len(ends) == 2 and self._check_connection(
-                    connection.location, ends[0][1], ends[1][1]):
+            if len(ends) == len(connection.ends) == 1 or len(ends) == 2 and \
+                    self._check_connection(connection.location, ends[0][1], ends[1][1]):
                 self._check_names(system, connection, ends, names)
+        self._check_own_names(system, components, connected, names)
         for instance in system.instances:
             component = components.get(instance.name)
             for port in component.ports if component else ():
@@ -133,18 +134,24 @@ class WiringRules(CheckContext):
 
     def _check_names(self, system: System, connection: Connection,
                      ends: list[tuple[PortRef, Port]], names: _Names) -> None:
-        """Check the ROS 2 name a connection remaps its two ends to.
+        """Check the ROS 2 name a connection remaps its ends to.
 
         ROS 2 remaps a name once per node: a port in two connections must
         take one name in both. One name carries one pattern and type, and a
-        service or action name has one server.
+        service or action name has one server. A connection of one port
+        takes its topic, a name outside the model.
         """
-        ref, port = next(e for e in ends if e[1].role is Role.PROVIDED)
+        ref, port = next((e for e in ends if e[1].role is Role.PROVIDED), ends[0])
         instance = system.instance(ref.instance)
         assert instance is not None
         name = connection_name(instance.namespace, ref.instance, ref.port,
                                connection.topic)
         here = connection.location
+        if len(ends) == 1 and port.role is Role.REQUIRED:
+            # its server, if any, is outside the model
+            self._use_name(name, port, here, names)
+            names.of_port.setdefault((ref.instance, ref.port), (name, here))
+            return
         for end, _ in ends:
             key = (end.instance, end.port)
             if key in names.of_port and names.of_port[key][0] != name:
@@ -154,17 +161,41 @@ class WiringRules(CheckContext):
                            f'line {where.line}: ROS 2 remaps a port to one '
                            'name (give both connections the same topic)')
             names.of_port.setdefault(key, (name, here))
-        kind = f'{port.pattern.value} ports of {port.type}'
-        other_kind, where = names.kind.setdefault(name, (kind, here))
-        if other_kind != kind:
-            self.error(here, f"'{name}' connects {kind} here but "
-                       f'{other_kind} at line {where.line}')
+        self._use_name(name, port, here, names)
         if port_kind(port).unique_server:
             server, where = names.server.setdefault(name, (str(ref), here))
             if server != str(ref):
                 self.error(here, f"'{name}' is served by '{ref}' here and "
                            f"by '{server}' at line {where.line}: a "
                            f'{port.pattern.value} name has one server')
+
+    def _use_name(self, name: str, port: Port, here: Location, names: _Names) -> None:
+        """Check that a name carries one pattern and type."""
+        kind = f'{port.pattern.value} ports of {port.type}'
+        other_kind, where = names.kind.setdefault(name, (kind, here))
+        if other_kind != kind:
+            self.error(here, f"'{name}' connects {kind} here but "
+                       f'{other_kind} at line {where.line}')
+
+    def _check_own_names(self, system: System, components: dict[str, Component],
+                         connected: set[tuple[str, str]], names: _Names) -> None:
+        """Check the names the unconnected ports of external nodes keep.
+
+        An external node's port that no connection remaps keeps its own name
+        (``name`` of the port): a connection to that name outside the model
+        must carry its pattern and type.
+        """
+        for instance in system.instances:
+            component = components.get(instance.name)
+            if component is None or not component.external:
+                continue
+            for port in component.ports:
+                if (instance.name, port.name) in connected:
+                    continue
+                name = connection_name(instance.namespace, instance.name, port.name,
+                                       port.node_name)
+                if name in names.kind:
+                    self._use_name(name, port, instance.location, names)
 
     def _check_overrides(self, instance: Instance, component: Component) -> None:
         parameters = {p.name: p for p in component.parameters}

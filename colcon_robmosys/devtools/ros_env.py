@@ -39,6 +39,8 @@ _NON_LOCAL = (
 # ROS 2 documents 0..101 as the domain ids whose ports stay clear of Linux's
 # ephemeral port range; 0 is everyone's default, so tests avoid it.
 _DOMAIN_IDS = 101
+#: how many of them one process holds at most
+_HELD_DOMAIN_IDS = 16
 _domain_counter = itertools.count()
 _domain_locks: dict[int, IO[str]] = {}
 
@@ -125,11 +127,15 @@ def free_domain_id() -> int:
 
     The sequence starts at an offset taken from the pid and steps by a counter, so
     concurrent pytest processes start apart; a lock file per id (held until this
-    process exits) makes sure they never share one. After 101 ids a process reuses
-    its own, which is safe because its earlier tests stopped their processes.
+    process exits) makes sure they never share one. A process holds at most
+    16 ids and then reuses its own in turn, which is safe because its earlier
+    tests stopped their processes, and leaves the others to other processes.
     """
     lock_dir = Path(tempfile.gettempdir()) / 'colcon-robmosys-domain-ids'
     lock_dir.mkdir(exist_ok=True)
+    if len(_domain_locks) >= _HELD_DOMAIN_IDS:
+        held = sorted(_domain_locks)
+        return held[next(_domain_counter) % len(held)]
     offset = os.getpid() * 37  # 37: consecutive pids start far apart
     for _ in range(_DOMAIN_IDS):
         domain_id = 1 + (offset + next(_domain_counter)) % _DOMAIN_IDS

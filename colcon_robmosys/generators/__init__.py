@@ -41,7 +41,8 @@ from colcon_robmosys.model.types import (
 
 __all__ = ['create_missing_user_files', 'FileSpec', 'generate_package',
            'GenerationReport', 'MANIFEST', 'PackagePlan', 'plan_package',
-           'read_manifest', 'StampStore', 'unchanged_package', 'UserFile']
+           'read_manifest', 'StampStore', 'unchanged_package', 'UserFile',
+           'write_tree']
 
 #: where a generated package holds its model file, which it installs
 INSTALLED_MODEL = 'robmosys/robmosys.yaml'
@@ -174,6 +175,19 @@ def generate_package(plan: PackagePlan, out_dir: Path, *,
     report = _write_outputs(outputs, out_dir, sync=sync)
     stamps.record(out_dir, fingerprint, [MANIFEST, *outputs], copied)
     return report
+
+
+def write_tree(files: dict[str, tuple[bytes, bool]], out_dir: Path, *,
+               sync: bool = True) -> GenerationReport:
+    """Write files that are not rendered (a copy of a package) as generated ones.
+
+    The manifest records them: writing again replaces only what is unchanged
+    since, and a file of the user's in the way is refused.
+
+    :param files: path relative to out_dir -> content, and whether it is
+      executable
+    """
+    return _write_outputs(dict(files), out_dir, sync=sync)
 
 
 def unchanged_package(out_dir: Path, stamps: StampStore | None,

@@ -19,7 +19,8 @@ from colcon_robmosys.mapping.launch import (
     launch_files, LaunchFile, PARAMS_FILE, SystemNode)
 from colcon_robmosys.mapping.portkinds import port_kind
 from colcon_robmosys.model.parameters import freeze_parameter_value
-from colcon_robmosys.model.types import Component, Instance, Language, System, Workspace
+from colcon_robmosys.model.types import (
+    Component, Instance, Language, PortRef, Role, System, Workspace)
 
 
 @dataclass(frozen=True)
@@ -188,18 +189,24 @@ def _edges(system: System, components: dict[str, Component],
     edges = []
     for connection in system.connections:
         source = provided_end(connection, components)
-        target = (connection.target if source == connection.source
-                  else connection.source)
         port = components[source.instance].port(source.port)
         assert port is not None
+        name = topics[(source.instance, source.port)]
+        if connection.target is None:
+            # a name outside the model: a plain node of the diagram, named so
+            target = PortRef(name, '', source.location)
+        else:
+            target = (connection.target if source == connection.source
+                      else connection.source)
         # arrows follow the data: from the publisher of push and event, to
-        # the server of send, query and action
-        if port_kind(port).data_to_provider:
+        # the server of send, query and action (the other end of a
+        # connection of one port is its peer: publisher or server when the
+        # port is required)
+        if port_kind(port).data_to_provider != (port.role is Role.REQUIRED):
             source, target = target, source
         edges.append(DiagramEdge(
             source.instance, source.port, target.instance, target.port,
-            f'{port.pattern.value} {port.type}\\n'
-            f'{topics[(source.instance, source.port)]}'))
+            f'{port.pattern.value} {port.type}\\n{name}'))
     return tuple(edges)
 
 

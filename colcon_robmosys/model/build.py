@@ -79,8 +79,13 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
                 instance, port = body[end].split('.')
                 return PortRef(instance, port, self.at(cpath + (end,)))
 
-            connections.append(Connection(ref('from'), ref('to'),
-                                          body.get('topic'),
+            ends = [end for end in ('from', 'to') if end in body]
+            if not ends or (len(ends) == 1 and 'topic' not in body):
+                self.error(cpath, "a connection joins 'from' and 'to', or one port and "
+                           "a 'topic' (a ROS 2 name outside the model)", key=True)
+                continue
+            connections.append(Connection(ref(ends[0]), ref(ends[-1]) if len(ends) == 2
+                                          else None, body.get('topic'),
                                           self.at(cpath, key=True)))
         return System(info, name, tuple(instances), tuple(connections),
                       self.at(path + ('package',)),

@@ -48,12 +48,21 @@ class PortRef:
 
 @dataclass(frozen=True)
 class Connection:
-    """A connection between two ports of two instances."""
+    """A connection between two ports of two instances, or of one port to a name.
+
+    A connection with one port (``target`` None) joins it to a ROS 2 name outside
+    the model (``topic``): a topic, service or action of a node nobody modelled.
+    """
 
     source: PortRef
-    target: PortRef
+    target: PortRef | None
     topic: str | None
     location: Location
+
+    @property
+    def ends(self) -> tuple[PortRef, ...]:
+        """Return the ports of the connection: two, or one."""
+        return (self.source,) if self.target is None else (self.source, self.target)
 
 
 @dataclass(frozen=True)

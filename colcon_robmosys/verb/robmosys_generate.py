@@ -16,7 +16,11 @@ from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.generators import create_missing_user_files
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
+from colcon_robmosys.generators import write_tree
 from colcon_robmosys.package_discovery.robmosys import checked_result
+from colcon_robmosys.runtime import installed_runtime
+from colcon_robmosys.runtime import RUNTIME_PACKAGE
+from colcon_robmosys.runtime import runtime_source
 
 
 class RobmosysGenerateVerb(VerbExtensionPoint):
@@ -31,11 +35,18 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
         satisfies_version(VerbExtensionPoint.EXTENSION_POINT_VERSION, '^1.0')
 
     def add_arguments(self, *, parser):  # noqa: D102
-        parser.add_argument(
+        what = parser.add_mutually_exclusive_group()
+        what.add_argument(
             '--output-dir', metavar='DIR', type=Path,
             help='Write the generated packages to DIR/<package> (by default '
             'nothing but the missing implementation files is written)')
-        parser.add_argument(
+        what.add_argument(
+            '--export', metavar='DIR', type=Path,
+            help='Write the selected packages to DIR/<package> as standalone '
+            'ament packages, with robmosys_runtime when they use it: they '
+            'build with plain colcon, without colcon-robmosys (for a release '
+            'with bloom, or a repository without models)')
+        what.add_argument(
             '--validate-only', action='store_true',
             help='Check the models and write nothing; exit non-zero on errors')
         add_packages_arguments(parser)
@@ -67,8 +78,14 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
             print(f'{len(selected)} package(s) valid: ' +
                   ', '.join(sorted(d.name for d in selected)))
             return 0
-        status = 0
-        if args.output_dir is not None:
+        out_base = args.output_dir
+        if args.export is not None:
+            problem = _export_problem(args.export, args)
+            if problem:
+                print(problem, file=sys.stderr)
+                return 1
+            out_base = args.export
+        elif args.output_dir is not None:
             # as colcon marks build/ and install/: the generated packages
             # must not be found as packages of the workspace next time
             args.output_dir.mkdir(parents=True, exist_ok=True)
@@ -77,13 +94,15 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
                 # created once: touching it would change its mtime on
                 # every run, and a run with no change changes nothing
                 marker.touch()
+        status = 0
+        uses_runtime = False
         for descriptor in selected:
             try:
                 plan = plan_package(result.workspace, descriptor.name)
                 for path in create_missing_user_files(plan):
                     print(f'created {_display(path)}: yours to fill in')
-                if args.output_dir is not None:
-                    out = args.output_dir / descriptor.name
+                if out_base is not None:
+                    out = out_base / descriptor.name
                     # output the user keeps (it may be under version
                     # control), unlike the build tree: made durable
                     report = generate_package(plan, out, sync=True)
@@ -91,10 +110,58 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
                           f'{len(report.written)} written, '
                           f'{len(report.unchanged)} unchanged, '
                           f'{len(report.removed)} removed')
+                uses_runtime = uses_runtime or RUNTIME_PACKAGE in plan.depends
             except RobmosysError as error:
                 print_diagnostics(error.diagnostics)
                 status = 1
+        provider = installed_runtime(
+            ignored=[Path(getattr(args, 'install_base', None) or 'install')])
+        if args.export is not None and uses_runtime and provider is not None:
+            # a release of its own (a binary package, say): the export
+            # depends on it as on any other package of the underlay
+            print(f'not exported: {RUNTIME_PACKAGE}, which '
+                  f'{_display(provider)} provides')
+        elif args.export is not None and uses_runtime and status == 0:
+            out = args.export / RUNTIME_PACKAGE
+            try:
+                report = write_tree(_runtime_files(), out)
+            except RobmosysError as error:
+                print_diagnostics(error.diagnostics)
+                return 1
+            print(f'exported {RUNTIME_PACKAGE} in {_display(out)}: '
+                  f'{len(report.written)} written, '
+                  f'{len(report.unchanged)} unchanged, '
+                  f'{len(report.removed)} removed')
         return status
+
+
+def _runtime_files():
+    """Return the files of the runtime package (our package data) to export."""
+    source = runtime_source()
+    files = {}
+    for path in sorted(source.rglob('*')):
+        relative = path.relative_to(source)
+        if path.is_file() and '__pycache__' not in relative.parts:
+            files[relative.as_posix()] = (
+                path.read_bytes(), os.access(path, os.X_OK))
+    return files
+
+
+def _export_problem(export, args):
+    """Return why packages cannot be exported to a folder, or None.
+
+    An export is a source tree of ordinary ament packages: inside the
+    workspace, colcon would find each package twice, as a model and as an
+    exported package.
+    """
+    target = export.resolve()
+    for base in getattr(args, 'base_paths', None) or ['.']:
+        base = Path(base).resolve()
+        if target == base or base in target.parents:
+            return (f'{export}: error: the export folder is inside the '
+                    f"workspace ('{base}'), where colcon would find every "
+                    'exported package twice: choose a folder outside it')
+    return None
 
 
 def _display(path):
