@@ -2,11 +2,11 @@
 # Licensed under the Apache License, Version 2.0
 """Models across workspaces: a workspace builds on the models its underlay installed.
 
-Workspace A holds a service definition and two components; every generated package
-installs its model (share/<package>/robmosys/robmosys.yaml, ament index resource
-robmosys_models). Workspace B, built with only A's install sourced, has a system of
-A's components and a component of its own that uses A's service definition; the
-system runs with data flowing.
+Workspace A holds a service definition, two components and a system of them; every
+generated package installs its model (share/<package>/robmosys/robmosys.yaml, ament
+index resource robmosys_models). Workspace B, built with only A's install sourced, has a
+system of A's components, A's system as a subsystem under a namespace, and a component
+of its own that uses A's service definition; the system runs with data flowing.
 """
 
 from __future__ import annotations
@@ -46,27 +46,32 @@ components:
           self.get_logger().info(f'maps counted: {self.counted}')
 systems:
   - package: chained_system
+    # A's whole pubsub system once more, under /site: site.publisher, site.subscriber
+    subsystems:
+      site: {system: pubsub_system}
     instances:
       publisher: {component: publisher, parameters: {indoor: true}}
       subscriber: {component: subscriber}
       counter: {component: map_counter}
+      site_counter: {component: map_counter, after: [site.publisher]}
     connections:
       - {from: publisher.pMap, to: subscriber.rMap}
       - {from: publisher.pMap, to: counter.rMap}
+      - {from: site.publisher.pMap, to: site_counter.rMap}
 """
 
 
 @pytest.fixture(scope='module')
 def underlay(tmp_path_factory) -> Path:
-    """Return the install of workspace A: simple_msgs, publisher and subscriber."""
+    """Return the install of workspace A: simple_msgs, publisher, subscriber, pubsub_system."""
     src = tmp_path_factory.mktemp('a_src') / 'src'
-    for package in ('simple_msgs', 'publisher', 'subscriber'):
+    for package in ('simple_msgs', 'publisher', 'subscriber', 'pubsub_system'):
         shutil.copytree(TEST_WORKSPACE / 'src' / package, src / package)
     return build_workspace(src, tmp_path_factory.mktemp('a_ws')).install
 
 
 def test_every_generated_package_installs_its_model(underlay):
-    for package in ('simple_msgs', 'publisher', 'subscriber'):
+    for package in ('simple_msgs', 'publisher', 'subscriber', 'pubsub_system'):
         share = underlay / package / 'share'
         model = share / package / 'robmosys' / 'robmosys.yaml'
         assert f'package: {package}' in model.read_text(), package
@@ -91,11 +96,13 @@ def test_a_workspace_builds_on_the_models_of_its_underlay(underlay, tmp_path):
     bringup = install / 'chained_system' / 'lib' / 'chained_system' / 'bringup'
     with background([sys.executable, str(bringup)],
                     env=ros_env.workspace_env(install, env), stop_timeout=30) as running:
-        assert wait_until(lambda: 'bringup: 3 of 3 managed instances active' in
-                          running.output(), timeout=90), running.output()
-        # A's publisher feeds A's subscriber and B's counter
-        assert wait_until(lambda: 'got map data' in running.output() and
-                          'maps counted: 2' in running.output(), timeout=30), running.output()
+        assert wait_until(lambda: 'bringup: 6 of 6 managed instances active' in
+                          running.output(), timeout=120), running.output()
+        # A's publisher feeds A's subscriber and B's counter; A's system, in /site, B's other
+        assert wait_until(lambda: '[counter]: maps counted: 2' in running.output() and
+                          '[site_counter]: maps counted: 2' in running.output() and
+                          '[site.subscriber]: got map data' in running.output(),
+                          timeout=30), running.output()
 
 
 def test_a_name_of_the_workspace_hides_the_underlay_one(underlay, tmp_path):
@@ -132,7 +139,8 @@ def test_a_package_two_underlays_install_is_reported_with_both(tmp_path):
     """The first prefix wins, as for packages; the workspace models using it are warned."""
     from colcon_robmosys.check import find_model_files, load_workspace
     from colcon_robmosys.check.index import InterfaceIndex
-    first = _fake_install(tmp_path / 'first', ['simple_msgs', 'publisher', 'subscriber'])
+    first = _fake_install(tmp_path / 'first', ['simple_msgs', 'publisher', 'subscriber',
+                                               'pubsub_system'])
     second = _fake_install(tmp_path / 'second', ['publisher'])
     src = tmp_path / 'src' / 'b'
     src.mkdir(parents=True)

@@ -14,6 +14,7 @@ from colcon_robmosys.check.activities import activity_problems, port_problems
 from colcon_robmosys.check.cache import CheckedFile, file_key, ModelCache
 from colcon_robmosys.check.cycles import CycleRules
 from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.check.subsystems import expand_subsystems
 from colcon_robmosys.check.types import TypeRules
 from colcon_robmosys.check.underlays import installed_models, shadow_message
 from colcon_robmosys.check.wiring import WiringRules
@@ -211,6 +212,10 @@ def load_workspace(paths: Iterable[Path],
         index, present, lambda path: checked_file(path, path.read_bytes()))
     files += underlays.files
     diagnostics += underlays.diagnostics
+    # the rules below see every system with the instances of its subsystems
+    files, problems = expand_subsystems(
+        files, {name for declared in broken.values() for name, _ in declared})
+    diagnostics += problems
     if cache is not None:
         cache.prune(set(keys.values()))
     checker = WorkspaceChecker(

@@ -48,7 +48,7 @@ class WiringRules(CheckContext):
                            f"'{instance.component}' {what}")
                 continue
             components[instance.name] = component
-            fqn = node_name(instance.namespace, instance.name)
+            fqn = node_name(instance.namespace, instance.node_name)
             if fqn in node_names:
                 self.error(instance.location,
                            f"instance '{instance.name}' has the node name "
@@ -76,6 +76,8 @@ class WiringRules(CheckContext):
             for ref in connection.ends:
                 component = components.get(ref.instance)
                 if system.instance(ref.instance) is None:
+                    if self._in_broken_subsystem(system, ref.instance):
+                        continue  # one mistake, one message: the subsystem's
                     self.error(ref.location,
                                f"connection end '{ref}': unknown instance "
                                f"'{ref.instance}'")
@@ -101,6 +103,14 @@ class WiringRules(CheckContext):
                     self.warning(system.package, instance.location,
                                  f"required port '{instance.name}."
                                  f"{port.name}' is not connected")
+
+    def _in_broken_subsystem(self, system: System, instance: str) -> bool:
+        """Tell whether an instance would be one of a subsystem that is reported broken."""
+        for subsystem in system.subsystems:
+            if instance.startswith(f'{subsystem.name}.'):
+                return subsystem.system == system.package or \
+                    not isinstance(self.models.get(subsystem.system), System)
+        return False
 
     def _check_connection(self, location: Location, a: Port,
                           b: Port) -> bool:
@@ -144,7 +154,7 @@ class WiringRules(CheckContext):
         ref, port = next((e for e in ends if e[1].role is Role.PROVIDED), ends[0])
         instance = system.instance(ref.instance)
         assert instance is not None
-        name = connection_name(instance.namespace, ref.instance, ref.port,
+        name = connection_name(instance.namespace, instance.node_name, ref.port,
                                connection.topic)
         here = connection.location
         if len(ends) == 1 and port.role is Role.REQUIRED:
@@ -192,7 +202,7 @@ class WiringRules(CheckContext):
             for port in component.ports:
                 if (instance.name, port.name) in connected:
                     continue
-                name = connection_name(instance.namespace, instance.name, port.name,
+                name = connection_name(instance.namespace, instance.node_name, port.name,
                                        port.node_name)
                 if name in names.kind:
                     self._use_name(name, port, instance.location, names)

@@ -28,7 +28,7 @@ class SystemConnection:
 
 def node_fqn(instance: Instance) -> str:
     """Return the fully qualified node name of an instance."""
-    return node_name(instance.namespace, instance.name)
+    return node_name(instance.namespace, instance.node_name)
 
 
 def provided_end(connection: Connection, components: dict[str, Component]
@@ -59,7 +59,7 @@ def connection_topics(system: System, components: dict[str, Component]
         provided = provided_end(connection, components)
         instance = system.instance(provided.instance)
         assert instance is not None
-        topic = connection_name(instance.namespace, provided.instance,
+        topic = connection_name(instance.namespace, instance.node_name,
                                 provided.port, connection.topic)
         for end in connection.ends:
             topics[(end.instance, end.port)] = topic

@@ -126,7 +126,7 @@ def _node(instance: Instance, component: Component,
           topics: dict[tuple[str, str], str]) -> SystemNode:
     return SystemNode(
         instance=instance.name, package=component.package,
-        executable=component.executable_name, name=instance.name,
+        executable=component.executable_name, name=instance.node_name,
         namespace=instance.namespace,
         # the name the node gives a port: the port's, or an external node's own
         remappings=tuple((p.node_name, topics[(instance.name, p.name)])

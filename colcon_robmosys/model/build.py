@@ -12,7 +12,7 @@ from colcon_robmosys.model.build_components import ComponentBuilder
 from colcon_robmosys.model.build_definitions import DefinitionBuilder
 from colcon_robmosys.model.loader import NodePath, RawData
 from colcon_robmosys.model.types import (
-    Connection, Instance, Model, PortRef, System)
+    Connection, Instance, Model, PortRef, Subsystem, System)
 
 
 class FileBuilder(DefinitionBuilder, ComponentBuilder):
@@ -44,7 +44,7 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
         if 'name' in raw:
             self.check_identifier(path + ('name',), 'system name', name)
         instances = []
-        for iname, body in raw['instances'].items():
+        for iname, body in raw.get('instances', {}).items():
             ipath = path + ('instances', iname)
             self.check_identifier(ipath, 'instance name', iname)
             if iname == 'nodes':
@@ -71,12 +71,26 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
                 self.error(path + ('instances', instance.name),
                            f"instance name '{instance.name}' is the name of the launch "
                            f"files of the host '{instance.name[3:]}'", key=True)
+        subsystems = []
+        for sname, body in raw.get('subsystems', {}).items():
+            spath = path + ('subsystems', sname)
+            self.check_identifier(spath, 'subsystem name', sname)
+            if sname in raw.get('instances', {}):
+                self.error(spath, f"subsystem '{sname}' has the name of an instance",
+                           key=True)
+            namespace = body.get('namespace', sname)
+            subsystems.append(Subsystem(
+                sname, body['system'], '/' + namespace.strip('/') if namespace.strip('/')
+                else '', self.at(spath, key=True)))
+        if not raw.get('instances') and not subsystems:
+            self.error(path, "a system has 'instances' or 'subsystems'", key=True)
         connections = []
         for index, body in enumerate(raw.get('connections', [])):
             cpath = path + ('connections', index)
 
             def ref(end: str) -> PortRef:
-                instance, port = body[end].split('.')
+                # subsystem.instance.port: the instance is subsystem.instance
+                instance, port = body[end].rsplit('.', 1)
                 return PortRef(instance, port, self.at(cpath + (end,)))
 
             ends = [end for end in ('from', 'to') if end in body]
@@ -89,7 +103,7 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
                                           self.at(cpath, key=True)))
         return System(info, name, tuple(instances), tuple(connections),
                       self.at(path + ('package',)),
-                      raw.get('processes', 'per_instance'))
+                      raw.get('processes', 'per_instance'), tuple(subsystems))
 
 
 def _camel(package: str) -> str:

@@ -77,6 +77,8 @@ def model_dependencies(model: Model) -> list[str]:
         # an external component is package/executable: the package is the dependency
         deps.extend(i.component.split('/')[0] for i in model.instances
                     if i.component != model.package)
+        # a change of a subsystem's model changes this system's package
+        deps.extend(s.system for s in model.subsystems if s.system != model.package)
     return list(dict.fromkeys(deps))
 
 

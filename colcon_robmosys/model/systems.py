@@ -32,6 +32,14 @@ class Instance:
     timeout: float | None = None
     #: the host it runs on; '' for the manager's
     host: str = ''
+    #: the node's name where it differs from the instance's: an instance of a
+    #: subsystem (``robot1.map_server``) is the node ``map_server``
+    node: str = ''
+
+    @property
+    def node_name(self) -> str:
+        """Return the name of the instance's node (in its namespace)."""
+        return self.node or self.name
 
 
 @dataclass(frozen=True)
@@ -66,8 +74,25 @@ class Connection:
 
 
 @dataclass(frozen=True)
+class Subsystem:
+    """Another system included in a system, under a namespace."""
+
+    name: str
+    #: the package of the included system
+    system: str
+    #: absolute, without a trailing slash; '' for the root namespace
+    namespace: str
+    location: Location
+
+
+@dataclass(frozen=True)
 class System:
-    """A system: component instances wired together."""
+    """A system: component instances wired together.
+
+    A system with subsystems holds, once the workspace is checked, their
+    instances and connections too (``subsystem.instance``): see
+    :mod:`colcon_robmosys.check.subsystems`.
+    """
 
     info: PackageInfo
     name: str
@@ -76,6 +101,7 @@ class System:
     location: Location
     #: 'per_instance' or 'shared' (the Python instances of a host in one process)
     processes: str = 'per_instance'
+    subsystems: tuple[Subsystem, ...] = ()
 
     @property
     def package(self) -> str:

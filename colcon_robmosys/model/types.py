@@ -21,7 +21,7 @@ from colcon_robmosys.model.components import (
 from colcon_robmosys.model.definitions import (
     Action, CommunicationObject, Constant, Event, Field, FieldType, Query,
     ServiceDefinition, Structure)
-from colcon_robmosys.model.systems import Connection, Instance, PortRef, System
+from colcon_robmosys.model.systems import Connection, Instance, PortRef, Subsystem, System
 
 __all__ = [
     'Action', 'Activity', 'CommunicationObject', 'Component', 'Connection',
@@ -30,7 +30,7 @@ __all__ = [
     'Maintainer', 'Model', 'model_key', 'ModelFile', 'PackageInfo', 'Parameter',
     'ParameterRange', 'ParameterValue', 'Pattern', 'PATTERN_INTERFACE', 'Port',
     'PortRef', 'PRIMITIVE_TYPES', 'QoS', 'Query', 'Role', 'ServiceDefinition',
-    'Structure', 'System', 'Workspace',
+    'Structure', 'Subsystem', 'System', 'Workspace',
 ]
 
 Model = Union[ServiceDefinition, Component, System]

@@ -42,7 +42,11 @@ def rosdep_env(tmp_path: Path, keys: Iterable[str],
         'type': 'index', 'version': 4, 'distributions': {'kilted': {
             'distribution': ['distribution.yaml'], 'distribution_status': 'active',
             'distribution_type': 'ros2', 'python_version': 3}}}))
-    env = dict(os.environ, ROSDEP_SOURCE_PATH=str(root / 'sources'),
+    # rosdep takes a package of a sourced prefix for a source package (which
+    # --ignore-src skips): what resolves must not depend on what is sourced
+    env = {k: v for k, v in os.environ.items()
+           if k not in ('AMENT_PREFIX_PATH', 'ROS_PACKAGE_PATH', 'CMAKE_PREFIX_PATH')}
+    env.update(ROSDEP_SOURCE_PATH=str(root / 'sources'),
                ROSDISTRO_INDEX_URL=(root / 'index-v4.yaml').as_uri(),
                ROS_HOME=str(root / 'home'), ROS_DISTRO='kilted', ROS_PYTHON_VERSION='3')
     return env

@@ -1,0 +1,108 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""Systems compose: a system includes others as subsystems under a namespace.
+
+The pubsub system of test_workspace is deployed twice by one system, which also
+connects a watcher of its own to a port of one of them. What the system package
+starts is checked here; tests/test_underlays.py runs a system whose subsystem
+comes from an underlay.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+import shutil
+import sys
+
+import yaml
+
+from colcon_robmosys.check import find_model_files, load_workspace
+from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.generators import generate_package, plan_package
+from colcon_robmosys.mapping.system import plan_system
+from colcon_robmosys.model.files import model_dependencies
+from colcon_robmosys.model.types import System
+from conftest import TEST_WORKSPACE
+
+TWO_ROBOTS = """\
+robmosys: 1
+systems:
+  - package: two_robots
+    license: Apache-2.0
+    maintainers: [{name: A, email: a@example.com}]
+    subsystems:
+      robot1: {system: pubsub_system}
+      robot2: {system: pubsub_system, namespace: /fleet/robot2}
+      flat: {system: pubsub_system, namespace: /}
+    instances:
+      watcher: {component: subscriber, namespace: ops, after: [robot1.publisher]}
+    connections:
+      - {from: robot1.publisher.pMap, to: watcher.rMap}
+"""
+
+
+def _load(tmp_path: Path):
+    src = tmp_path / 'src'
+    for package in ('simple_msgs', 'publisher', 'subscriber', 'pubsub_system'):
+        shutil.copytree(TEST_WORKSPACE / 'src' / package, src / package)
+    (src / 'two_robots').mkdir()
+    (src / 'two_robots' / 'robmosys.yaml').write_text(TWO_ROBOTS)
+    result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
+    assert result.errors == []
+    return result
+
+
+def test_the_instances_of_subsystems_join_the_system_in_their_namespace(tmp_path):
+    result = _load(tmp_path)
+    system = result.workspace.model('two_robots')
+    assert isinstance(system, System)
+    assert [(i.name, i.namespace, i.node_name, i.after) for i in system.instances] == [
+        ('watcher', '/ops', 'watcher', ('robot1.publisher',)),
+        ('robot1.publisher', '/robot1', 'publisher', ()),
+        ('robot1.subscriber', '/robot1', 'subscriber', ()),
+        ('robot2.publisher', '/fleet/robot2', 'publisher', ()),
+        ('robot2.subscriber', '/fleet/robot2', 'subscriber', ()),
+        ('flat.publisher', '', 'publisher', ()),
+        ('flat.subscriber', '', 'subscriber', ()),
+    ]
+    # the subsystem's parameters come along
+    publisher = system.instance('robot2.publisher')
+    assert dict(publisher.parameters) == {'indoor': True, 'noOfScans': 3}
+    # a change of the subsystem's model regenerates the system; colcon builds it first
+    assert 'pubsub_system' in model_dependencies(system)
+    assert result.warnings_of('two_robots') == []
+
+
+def test_the_system_package_starts_every_node_under_its_name(tmp_path):
+    result = _load(tmp_path)
+    plan = plan_system(result.workspace.model('two_robots'), result.workspace)
+    nodes = {n.instance: (n.fqn, n.name, dict(n.remappings)) for n in plan.nodes}
+    assert nodes == {
+        'watcher': ('/ops/watcher', 'watcher', {'rMap': '/robot1/publisher/pMap'}),
+        'robot1.publisher': ('/robot1/publisher', 'publisher',
+                             {'pMap': '/robot1/publisher/pMap'}),
+        'robot1.subscriber': ('/robot1/subscriber', 'subscriber',
+                              {'rMap': '/robot1/publisher/pMap'}),
+        'robot2.publisher': ('/fleet/robot2/publisher', 'publisher',
+                             {'pMap': '/fleet/robot2/publisher/pMap'}),
+        'robot2.subscriber': ('/fleet/robot2/subscriber', 'subscriber',
+                              {'rMap': '/fleet/robot2/publisher/pMap'}),
+        'flat.publisher': ('/publisher', 'publisher', {'pMap': '/publisher/pMap'}),
+        'flat.subscriber': ('/subscriber', 'subscriber', {'rMap': '/publisher/pMap'}),
+    }
+    out = tmp_path / 'out'
+    generate_package(plan_package(result.workspace, 'two_robots'), out)
+    params = yaml.safe_load((out / 'cfg' / 'params.yaml').read_text())
+    assert set(params) == {'/robot1/publisher', '/fleet/robot2/publisher', '/publisher'}
+    package_xml = (out / 'package.xml').read_text()
+    assert '<exec_depend>publisher</exec_depend>' in package_xml
+    assert '<exec_depend>subscriber</exec_depend>' in package_xml
+    # the manager knows each instance by its name in the system, and its node
+    description = json.loads((out / 'bringup.json').read_text())
+    watcher = next(i for i in description['instances'] if i['instance'] == 'watcher')
+    assert watcher['after'] == ['robot1.publisher']
+    assert {(i['instance'], i['fqn']) for i in description['instances']} == {
+        (instance, fqn) for instance, (fqn, _, _) in nodes.items()}
+    launch = (out / 'launch' / 'two_robots.robot2.publisher.launch.py').read_text()
+    assert "name='publisher'" in launch and "namespace='/fleet/robot2'" in launch
