@@ -18,7 +18,7 @@ PACKAGE = REPO / 'colcon_robmosys'
 
 #: The layers, lowest first: each imports only from those before it.
 #: errors.py is the one module every layer shares.
-LAYERS = ('errors', 'model', 'mapping', 'check', 'generators')
+LAYERS = ('errors', 'model', 'mapping', 'check', 'generators', 'importer')
 #: The colcon glue, on top; the only importers of colcon_core.
 GLUE = ('package_identification', 'package_discovery', 'package_selection', 'task', 'verb')
 #: Tools for developers (tests, benchmarks, the demo): above everything,

@@ -40,6 +40,7 @@ BLOCKLIST = ':'.join([
     'colcon_core.task.test.robmosys.system',
     'colcon_core.task.test.robmosys.invalid',
     'colcon_core.verb.robmosys-generate',
+    'colcon_core.verb.robmosys-import',
 ])
 
 #: the packages of the two systems, and the runtime they use

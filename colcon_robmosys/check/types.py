@@ -60,6 +60,8 @@ class TypeRules(CheckContext):
         return None
 
     def _check_definition(self, definition: ServiceDefinition) -> None:
+        if definition.external:
+            self._check_installed(definition)
         structures = [o.structure for o in definition.communication_objects]
         structures += [s for q in definition.queries
                        for s in (q.request, q.answer)]
@@ -76,6 +78,23 @@ class TypeRules(CheckContext):
                 if problem:
                     self.error(field_.location,
                                f"field '{field_.name}': {problem}")
+
+    def _check_installed(self, definition: ServiceDefinition) -> None:
+        """Check that an external service definition describes an installed package."""
+        package = definition.package
+        if not self.index.has_package(package):
+            self.error(definition.info.location,
+                       f"service definition '{package}' is external, but no package "
+                       f"'{package}' is installed in AMENT_PREFIX_PATH")
+            return
+        parts = [(InterfaceKind.MSG, o.name, o.location)
+                 for o in definition.communication_objects]
+        parts += [(InterfaceKind.SRV, q.name, q.location) for q in definition.queries]
+        parts += [(InterfaceKind.ACTION, a.name, a.location) for a in definition.actions]
+        for kind, name, location in parts:
+            if not self.index.has_interface(InterfaceRef(package, kind, name)):
+                self.error(location, f"the installed package '{package}' has no "
+                           f"{kind.value} '{name}'")
 
     def _check_component(self, component: Component) -> None:
         for port in component.ports:

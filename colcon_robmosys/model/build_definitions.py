@@ -90,8 +90,12 @@ class DefinitionBuilder(BuilderBase):
         if not (objects or queries or actions or events):
             self.error(path, f"service definition '{package}' defines no "
                        'communication object, query, action or event')
+        external = bool(raw.get('external', False))
+        if external and events:
+            self.error(path + ('events',), 'an installed package holds actions, not events: '
+                       "describe its actions under 'actions'", key=True)
         return ServiceDefinition(info, tuple(objects), tuple(queries),
-                                 tuple(actions), tuple(events))
+                                 tuple(actions), tuple(events), external)
 
     def _field_type(self, path: NodePath, text: str, package: str,
                     what: str) -> FieldType | None:

@@ -129,6 +129,8 @@ class ServiceDefinition:
     queries: tuple[Query, ...]
     actions: tuple[Action, ...]
     events: tuple[Event, ...] = ()
+    #: describes an installed interface package: nothing is generated
+    external: bool = False
 
     @property
     def package(self) -> str:

@@ -80,11 +80,12 @@ class Workspace:
     def generated_models(self) -> tuple[Model, ...]:
         """Return the models that generate a package of this workspace.
 
-        Not external components (a hand-written package), nor the models an
+        Not external components (a hand-written package) nor external service
+        definitions (an installed interface package), nor the models an
         underlay installed (built there).
         """
         return tuple(m for f in self.files if not f.installed for m in f.models
-                     if not (isinstance(m, Component) and m.external))
+                     if not (isinstance(m, (Component, ServiceDefinition)) and m.external))
 
     def model(self, package: str) -> Model | None:
         """Return the model of a package, or of an external component (package/executable)."""
