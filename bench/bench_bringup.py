@@ -94,8 +94,9 @@ def bring_up(install: Path, description: Path, layout: str, count: int,
 
     The outcome is ``up``, ``failed`` (bringup reported a failure), ``hung``
     (no report within timeout: bringup reports by ``--start-timeout`` plus two
-    transition timeouts at the latest) or ``stuck`` (up, but not ended 60 s after
-    SIGINT: the bring-down hung).
+    transition timeouts at the latest) or ``stuck`` (not ended within
+    ``BRING_DOWN_BOUND`` of SIGINT, which bringup's own timeouts bound: the
+    bring-down hung). Whatever a killed bringup left running is killed.
     """
     env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
     executable = install / SYSTEM / 'lib' / SYSTEM / 'bringup'
@@ -123,12 +124,33 @@ def bring_up(install: Path, description: Path, layout: str, count: int,
             if process.poll() is None:
                 os.killpg(process.pid, signal.SIGINT)
                 try:
-                    process.wait(60)
+                    # bringup's own bound: deactivate and cleanup (30 s each at
+                    # most), then 10 s for the processes to end
+                    process.wait(BRING_DOWN_BOUND)
                 except subprocess.TimeoutExpired:
                     os.killpg(process.pid, signal.SIGKILL)
                     process.wait()
                     outcome = 'stuck'
+            _kill_left_over(install)
     return outcome, took
+
+
+#: seconds bringup may take to bring a system down and end: two transitions of
+#: --timeout 30 each, the processes' 10 s to end, and a margin
+BRING_DOWN_BOUND = 2 * 30 + 10 + 20
+
+
+def _kill_left_over(install: Path) -> None:
+    """Kill the instances a killed bringup left (each runs in a session of its own)."""
+    marker = str(install).encode()
+    for entry in Path('/proc').iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            if marker in (entry / 'cmdline').read_bytes():
+                os.kill(int(entry.name), signal.SIGKILL)
+        except (OSError, ValueError):
+            pass
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -57,6 +57,7 @@ def test_colcon_list_shows_one_package_per_model(workspace):
         ('examples_system', '(robmosys.system)'),
         ('fibonacci_client', '(robmosys.component)'),
         ('fibonacci_server', '(robmosys.component)'),
+        ('fleet_system', '(robmosys.system)'),
         ('hand_level_sensor', '(ros.ament_cmake)'),
         # hand-written nodes, and a system of them: their models are external
         # components, which make no package of their own
@@ -142,9 +143,9 @@ def test_generate_creates_missing_implementation_only(workspace):
         'cpp_receiver', 'cpp_sender', 'cpp_server', 'cpp_subscriber', 'dummy_joint_states',
         'dummy_laser', 'dummy_map_server', 'dummy_robot_bringup', 'dummy_robot_cpp_bringup',
         'dummy_robot_monitor', 'example_msgs', 'examples_system', 'fibonacci_client',
-        'fibonacci_server', 'handwritten_system', 'level_sensor', 'level_watcher',
-        'mixed_system', 'publisher', 'pubsub_system', 'receiver', 'sender', 'simple_msgs',
-        'subscriber', 'text_relay']
+        'fibonacci_server', 'fleet_system', 'handwritten_system', 'level_sensor',
+        'level_watcher', 'mixed_system', 'publisher', 'pubsub_system', 'receiver', 'sender',
+        'simple_msgs', 'subscriber', 'text_relay']
 
 
 def test_generate_honours_package_selection(workspace):

@@ -65,6 +65,25 @@ def test_activate_brings_the_system_up(test_workspace_built, launch_env, launch_
         assert wait_until(lambda: len(RECEIVED.findall(output())) >= 2, timeout=30), output()
 
 
+def test_a_system_of_subsystems_comes_up_with_every_node_in_its_namespace(
+        test_workspace_built, launch_env, domain_id):
+    """fleet_system: pubsub_system in /robot1 and /robot2, and a watcher of robot1's maps."""
+    from colcon_robmosys.devtools.system import LifecycleDriver
+    share = test_workspace_built.share('fleet_system')
+    with background([sys.executable, '-c', LAUNCHER,
+                     str(share / 'launch' / 'fleet_system.launch.py')],
+                    env=launch_env) as launched:
+        def heard(node: str) -> bool:
+            return re.search(rf'\[{node}\]: got map data', launched.output()) is not None
+        assert wait_until(lambda: all(heard(n) for n in (
+            'robot1.subscriber', 'robot2.subscriber', 'watcher')), timeout=60), \
+            launched.output()
+        with LifecycleDriver(domain_id) as driver:
+            for fqn in ('/robot1/publisher', '/robot2/subscriber', '/watcher'):
+                assert driver.state(fqn) == 'active', fqn
+            assert driver.parameters('/robot2/publisher', ['noOfScans']) == {'noOfScans': 3}
+
+
 def test_launch_leaves_the_nodes_unconfigured(test_workspace_built, launch_env, domain_id):
     from colcon_robmosys.devtools.system import LifecycleDriver
     share = test_workspace_built.share('pubsub_system')

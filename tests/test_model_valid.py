@@ -385,7 +385,8 @@ def test_example_workspace(tmp_path):
         'cpp_receiver', 'cpp_sender', 'cpp_server', 'cpp_subscriber', 'dummy_joint_states',
         'dummy_laser', 'dummy_map_server', 'dummy_robot_bringup', 'dummy_robot_cpp_bringup',
         'dummy_robot_monitor', 'example_msgs', 'examples_system', 'fibonacci_client',
-        'fibonacci_server', 'handwritten_nodes', 'handwritten_nodes', 'handwritten_system',
+        'fibonacci_server', 'fleet_system', 'handwritten_nodes', 'handwritten_nodes',
+        'handwritten_system',
         'level_sensor', 'level_watcher', 'mixed_system', 'publisher', 'pubsub_system',
         'receiver', 'sender', 'simple_msgs', 'subscriber', 'text_relay']
 

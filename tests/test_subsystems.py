@@ -4,8 +4,9 @@
 
 The pubsub system of test_workspace is deployed twice by one system, which also
 connects a watcher of its own to a port of one of them. What the system package
-starts is checked here; tests/test_underlays.py runs a system whose subsystem
-comes from an underlay.
+starts is checked here, and test_workspace's fleet_system (the same, built) runs;
+tests/test_underlays.py runs a system whose subsystem comes from an underlay, and
+tests/test_launch_ros.py launches fleet_system.
 """
 
 from __future__ import annotations
@@ -15,15 +16,18 @@ from pathlib import Path
 import shutil
 import sys
 
+import pytest
 import yaml
 
 from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.devtools.ros_env import background, free_domain_id
+from colcon_robmosys.devtools.system import wait_until
 from colcon_robmosys.generators import generate_package, plan_package
 from colcon_robmosys.mapping.system import plan_system
 from colcon_robmosys.model.files import model_dependencies
 from colcon_robmosys.model.types import System
-from conftest import TEST_WORKSPACE
+from conftest import requires_ros, TEST_WORKSPACE
 
 TWO_ROBOTS = """\
 robmosys: 1
@@ -106,3 +110,18 @@ def test_the_system_package_starts_every_node_under_its_name(tmp_path):
         (instance, fqn) for instance, (fqn, _, _) in nodes.items()}
     launch = (out / 'launch' / 'two_robots.robot2.publisher.launch.py').read_text()
     assert "name='publisher'" in launch and "namespace='/fleet/robot2'" in launch
+
+
+@pytest.mark.integration
+@requires_ros
+def test_fleet_system_runs_two_robots_and_a_watcher(test_workspace_built):
+    """test_workspace's fleet_system: pubsub_system in /robot1 and /robot2."""
+    bringup = test_workspace_built.install / 'fleet_system' / 'lib' / 'fleet_system' / 'bringup'
+    with background([sys.executable, str(bringup)],
+                    env=test_workspace_built.env(free_domain_id()), stop_timeout=30) as running:
+        assert wait_until(lambda: 'bringup: 5 of 5 managed instances active' in
+                          running.output(), timeout=120), running.output()
+        assert wait_until(lambda: all(
+            f'[{node}]: got map data' in running.output()
+            for node in ('robot1.subscriber', 'robot2.subscriber', 'watcher')),
+            timeout=30), running.output()

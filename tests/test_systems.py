@@ -26,7 +26,8 @@ from colcon_robmosys.devtools.system import (
     activate_launch_file, read_activate_after, read_launch_file)
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
-from colcon_robmosys.model.types import Component, Pattern, PortRef, Role, System, Workspace
+from colcon_robmosys.model.types import (
+    Component, Instance, Pattern, PortRef, Role, System, Workspace)
 from conftest import colcon, requires_ros, TEST_WORKSPACE
 
 #: What the launch files pass besides the node's identity (launch_ros API).
@@ -68,7 +69,7 @@ def expected_remappings(system: System) -> dict[str, set[tuple[str, str]]]:
         namespace = system.instance(provided.instance).namespace.strip('/')
         prefix = f'/{namespace}' if namespace else ''
         if connection.topic is None:
-            name = f'{prefix}/{provided.instance}/{provided.port}'
+            name = f'{prefix}/{system.instance(provided.instance).node_name}/{provided.port}'
         elif connection.topic.startswith('/'):
             name = connection.topic
         else:
@@ -91,7 +92,7 @@ def generated(tmp_path_factory) -> Path:
 
 def test_every_example_system_is_checked():
     assert SYSTEMS == ['dummy_robot_bringup', 'dummy_robot_cpp_bringup', 'examples_system',
-                       'handwritten_system', 'mixed_system', 'pubsub_system']
+                       'fleet_system', 'handwritten_system', 'mixed_system', 'pubsub_system']
 
 
 def _launch_files(package: str) -> list[str]:
@@ -111,10 +112,16 @@ def _aliases(package: str) -> dict[str, str]:
     return aliases
 
 
+def _fqn(instance: Instance) -> str:
+    """Return the full name of an instance's node."""
+    return f'{instance.namespace}/{instance.node_name}'
+
+
 def _instance_of(name: str) -> str | None:
     """Return the instance a launch file is for, or None for the whole system."""
+    # <system>.<instance>[.nodes].launch.py; an instance of a subsystem is sub.instance
     parts = name.removesuffix('.launch.py').removesuffix('.nodes').split('.')
-    return parts[1] if len(parts) == 2 else None
+    return '.'.join(parts[1:]) or None
 
 
 LAUNCH_FILES = [f for package in SYSTEMS for f in _launch_files(package)]
@@ -144,17 +151,20 @@ def test_launch_file_follows_the_system_model(generated, launch_file):
     nodes = read_launch_file(share / 'launch' / name, share)
     instance = _instance_of(name)
     wanted = [i for i in system.instances if instance in (None, i.name)]
-    assert sorted(n.name for n in nodes) == sorted(i.name for i in wanted)
+    # nodes are told apart by their full names: a subsystem's keep their own names
+    by_fqn = {_fqn(i): i for i in system.instances}
+    assert sorted(n.fqn for n in nodes) == sorted(_fqn(i) for i in wanted)
     remappings = expected_remappings(system)
     for node in nodes:
-        model = system.instance(node.name)
-        component = _component(system, node.name)
+        model = by_fqn[node.fqn]
+        assert node.name == model.node_name
+        component = _component(system, model.name)
         # an external component is package/executable
         assert node.package == model.component.split('/')[0]
         assert node.executable == component.executable_name
         assert node.namespace == model.namespace
-        assert set(node.remappings) == remappings[node.name]
-        assert len(node.remappings) == len(remappings[node.name]), 'a port remapped twice'
+        assert set(node.remappings) == remappings[model.name]
+        assert len(node.remappings) == len(remappings[model.name]), 'a port remapped twice'
         assert node.params_files == (share / 'cfg' / 'params.yaml',)
         assert node.extra == LAUNCH_EXTRA
 
@@ -181,8 +191,9 @@ def test_activate_file_follows_the_activation_model(generated, launch_file):
     # a file waits only for the instances it activates itself
     assert activate_after == {i.name: [a for a in i.after if a in in_file] for i in managed}
     # the nodes are created in an order that respects 'after'
-    nodes = [n.name for n in read_launch_file(generated / package / 'launch' / name,
-                                              generated / package)]
+    by_fqn = {_fqn(i): i.name for i in system.instances}
+    nodes = [by_fqn[n.fqn] for n in read_launch_file(generated / package / 'launch' / name,
+                                                     generated / package)]
     for i in managed:
         assert all(nodes.index(a) < nodes.index(i.name) for a in activate_after[i.name])
 
@@ -198,7 +209,7 @@ def test_params_file_holds_the_overrides_by_node_name(generated, package):
             values = {n: float(v) if types[n] == 'double' else
                       list(v) if isinstance(v, (list, tuple)) else v
                       for n, v in instance.parameters}
-            expected[f'{instance.namespace}/{instance.name}'] = {'ros__parameters': values}
+            expected[_fqn(instance)] = {'ros__parameters': values}
     # a system that sets none says so, in a file rcl still reads
     assert params == (expected or {'/**': {'ros__parameters': {}}})
 
@@ -224,12 +235,13 @@ def test_diagram_shows_instances_ports_and_typed_connections(generated, package)
     for instance in system.instances:
         component = _component(system, instance.name)
         line = next(x for x in dot.splitlines() if x.startswith(f'  "{instance.name}" ['))
-        assert f'{instance.namespace}/{instance.name}' in line
+        assert _fqn(instance) in line
         for port in component.ports:
             assert f'<{port.name}> {port.name} ({port.role.value} {port.pattern.value})' in line
         assert ('style=dashed' in line) is (not instance.activate)
-    # a name outside the model is a node of its own, without ports
-    edge = (r'^  "([\w/]+)"(?::(\w+))? -> "([\w/]+)"(?::(\w+))? '
+    # a name outside the model is a node of its own, without ports; an instance of a
+    # subsystem is subsystem.instance
+    edge = (r'^  "([\w/.]+)"(?::(\w+))? -> "([\w/.]+)"(?::(\w+))? '
             r'\[label="(\w+) ([\w/]+)\\n([\w/]+)"\];$')
     edges = re.findall(edge, dot, re.MULTILINE)
     assert len(edges) == len(system.connections)
@@ -269,7 +281,7 @@ def test_activate_file_drives_the_managed_instances_by_their_node_names(generate
               if isinstance(n, ast.Assign)}
     system = _system('dummy_robot_bringup')
     managed = [i for i in system.instances if i.activate and i.name == 'monitor']
-    assert tables['NODES'] == {i.name: f'{i.namespace}/{i.name}' for i in managed}
+    assert tables['NODES'] == {i.name: _fqn(i) for i in managed}
     assert set(tables['ACTIVATE_AFTER']) == set(tables['NODES'])
     assert 'SystemActivation(get_ros_node(context), NODES, ACTIVATE_AFTER' in source
 
