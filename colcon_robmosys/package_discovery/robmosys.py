@@ -117,6 +117,17 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
                     (Path(model_file).parent.name, 'invalid')]:
                 descriptors.add(
                     _descriptor(model_file, name, kind, (), shared))
+        # a file of external models only (nothing generated) with errors:
+        # named after its folder too, so that a build reports them and fails
+        generating = {m.info.model_file for m in
+                      result.workspace.generated_models}
+        ours = {str(path) for path in model_files}
+        for model_file in sorted({d.location.path for d in result.errors} &
+                                 ours - generating -
+                                 result.broken_files.keys()):
+            descriptors.add(_descriptor(
+                model_file, Path(model_file).parent.name, 'invalid', (),
+                shared))
         if not runtime_folders and _runtime_needed(args):
             descriptors.add(_runtime_descriptor())
         return descriptors

@@ -21,6 +21,7 @@ from colcon_robmosys.package_discovery.robmosys import checked_result
 from colcon_robmosys.runtime import installed_runtime
 from colcon_robmosys.runtime import RUNTIME_PACKAGE
 from colcon_robmosys.runtime import runtime_source
+from colcon_robmosys.verb import display_path
 
 
 class RobmosysGenerateVerb(VerbExtensionPoint):
@@ -100,13 +101,13 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
             try:
                 plan = plan_package(result.workspace, descriptor.name)
                 for path in create_missing_user_files(plan):
-                    print(f'created {_display(path)}: yours to fill in')
+                    print(f'created {display_path(path)}: yours to fill in')
                 if out_base is not None:
                     out = out_base / descriptor.name
                     # output the user keeps (it may be under version
                     # control), unlike the build tree: made durable
                     report = generate_package(plan, out, sync=True)
-                    print(f'generated {descriptor.name} in {_display(out)}: '
+                    print(f'generated {descriptor.name} in {display_path(out)}: '
                           f'{len(report.written)} written, '
                           f'{len(report.unchanged)} unchanged, '
                           f'{len(report.removed)} removed')
@@ -120,7 +121,7 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
             # a release of its own (a binary package, say): the export
             # depends on it as on any other package of the underlay
             print(f'not exported: {RUNTIME_PACKAGE}, which '
-                  f'{_display(provider)} provides')
+                  f'{display_path(provider)} provides')
         elif args.export is not None and uses_runtime and status == 0:
             out = args.export / RUNTIME_PACKAGE
             try:
@@ -128,7 +129,7 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
             except RobmosysError as error:
                 print_diagnostics(error.diagnostics)
                 return 1
-            print(f'exported {RUNTIME_PACKAGE} in {_display(out)}: '
+            print(f'exported {RUNTIME_PACKAGE} in {display_path(out)}: '
                   f'{len(report.written)} written, '
                   f'{len(report.unchanged)} unchanged, '
                   f'{len(report.removed)} removed')
@@ -162,10 +163,3 @@ def _export_problem(export, args):
                     f"workspace ('{base}'), where colcon would find every "
                     'exported package twice: choose a folder outside it')
     return None
-
-
-def _display(path):
-    try:
-        return os.path.relpath(path)
-    except ValueError:
-        return str(path)

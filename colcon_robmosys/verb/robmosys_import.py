@@ -1,7 +1,6 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-import os
 from pathlib import Path
 import sys
 
@@ -13,6 +12,7 @@ from colcon_robmosys.errors import print_diagnostics
 from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.generators.writer import create_user_file
 from colcon_robmosys.importer.interfaces import import_interfaces
+from colcon_robmosys.verb import display_path
 
 
 class RobmosysImportVerb(VerbExtensionPoint):
@@ -60,16 +60,9 @@ class RobmosysImportVerb(VerbExtensionPoint):
             path = args.output_dir / model.package / 'robmosys.yaml'
             path.parent.mkdir(parents=True, exist_ok=True)
             if not create_user_file(path, model.text().encode('utf-8')):
-                print(f'{_display(path)}: error: the file exists: move it away to '
+                print(f'{display_path(path)}: error: the file exists: move it away to '
                       'import the package again', file=sys.stderr)
                 status = 1
                 continue
-            print(f'imported {model.package} into {_display(path)}')
+            print(f'imported {model.package} into {display_path(path)}')
         return status
-
-
-def _display(path):
-    try:
-        return os.path.relpath(path)
-    except ValueError:
-        return str(path)
