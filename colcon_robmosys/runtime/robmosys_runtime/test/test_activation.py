@@ -108,3 +108,25 @@ def test_a_stopped_bring_up_ends_quietly(spinning):
     assert [r for r in reports if r[0] == 'error'] == []
     assert 'b' not in outcome.active
     assert not any(t.is_alive() for t in threading.enumerate() if t.name == 'activate b')
+
+
+def test_lines_of_parallel_transitions_never_run_into_each_other(capfd):
+    """Threads that report at once give whole lines, one each (print() wrote two pieces)."""
+    from robmosys_runtime.manager import say
+    barrier = threading.Barrier(16)
+
+    def report(thread):
+        barrier.wait()
+        for index in range(50):
+            say('info', f'instance beat_{thread}_{index} is active')
+
+    threads = [threading.Thread(target=report, args=(t,)) for t in range(16)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    lines = capfd.readouterr().out.split('\n')
+    assert lines.pop() == ''
+    assert len(lines) == 16 * 50
+    assert all(line.startswith('bringup: instance beat_') and line.endswith(' is active') and
+               line.count('bringup:') == 1 for line in lines), lines
