@@ -22,7 +22,7 @@ from colcon_robmosys.errors import Diagnostic, RobmosysError
 from colcon_robmosys.model.build import FileBuilder
 from colcon_robmosys.model.build_base import MODEL_SECTIONS
 from colcon_robmosys.model.files import (
-    find_model_files, model_dependencies, packages_of)
+    external_components_of, find_model_files, model_dependencies, packages_of)
 from colcon_robmosys.model.loader import (
     load_bytes, load_file, LoadedFile, read_model_bytes)
 from colcon_robmosys.model.schema import structure_problems
@@ -180,6 +180,8 @@ def load_workspace(paths: Iterable[Path],
     diagnostics: list[Diagnostic] = []
     broken: dict[str, list[tuple[str, str]]] = {}
     keys: dict[str, str] = {}
+    # external components of broken files: no "unknown component" for their instances
+    broken_external: set[str] = set()
 
     def checked_file(path: Path, raw: bytes) -> CheckedFile:
         key = keys[str(path)] = file_key(path, raw)
@@ -204,6 +206,7 @@ def load_workspace(paths: Iterable[Path],
         if checked.diagnostics:
             diagnostics.extend(checked.diagnostics)
             broken[str(path)] = list(checked.declared)
+            broken_external.update(_broken_external(path, checked.model_file))
     index = index or InterfaceIndex.from_environment()
     # then what the underlays installed, for the packages the workspace lacks
     present = {model_key(m) for f in files for m in f.models} | {
@@ -220,7 +223,8 @@ def load_workspace(paths: Iterable[Path],
         cache.prune(set(keys.values()))
     checker = WorkspaceChecker(
         files, index,
-        (name for declared in broken.values() for name, _ in declared))
+        [name for declared in broken.values() for name, _ in declared] +
+        sorted(broken_external))
     checker.check()
     for model_file in files:
         for model in () if model_file.installed else model_file.models:
@@ -233,6 +237,15 @@ def load_workspace(paths: Iterable[Path],
                       broken, {package: sorted(set(warnings)) for package,
                                warnings in checker.package_warnings.items()},
                       keys)
+
+
+def _broken_external(path: Path, kept: ModelFile | None) -> set[str]:
+    """Return the external components of a broken file that did not pass."""
+    try:
+        described = external_components_of(load_file(path).data)
+    except RobmosysError:
+        return set()
+    return set(described) - {model_key(c) for c in kept.components} if kept else set(described)
 
 
 class WorkspaceChecker(TypeRules, WiringRules, CycleRules):
@@ -261,7 +274,10 @@ class WorkspaceChecker(TypeRules, WiringRules, CycleRules):
             self._check_definition(model)
         for model in self.components.values():
             self._check_component(model)
-        for model in self.models.values():
-            if isinstance(model, System):
+        # an installed system was checked when its workspace built it; a
+        # workspace system that includes it is checked with its instances
+        installed = {model_key(m) for f in self.files if f.installed for m in f.systems}
+        for key, model in self.models.items():
+            if isinstance(model, System) and key not in installed:
                 self._check_system(model)
         self._check_cycles()

@@ -22,7 +22,7 @@ from typing import Callable
 from colcon_robmosys.check.cache import CheckedFile
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.errors import Diagnostic
-from colcon_robmosys.model.types import ModelFile
+from colcon_robmosys.model.types import model_key, ModelFile
 
 #: the ament index resource type of installed models
 RESOURCE_TYPE = 'robmosys_models'
@@ -68,6 +68,9 @@ def installed_models(index: InterfaceIndex, present: set[str],
     """
     underlays = Underlays()
     files, diagnostics = underlays.files, underlays.diagnostics
+    # an external component is described by the models of the systems that
+    # run it (nobody installs it as a package): the first description counts
+    described = set(present)
     for package, paths in sorted(installed_model_paths(index, present).items()):
         path = paths[0]
         if len(paths) > 1:
@@ -80,7 +83,10 @@ def installed_models(index: InterfaceIndex, present: set[str],
 
         def own(models: tuple) -> tuple:  # type: ignore[type-arg]
             # the file may hold the models of other packages too: each installs it
-            return tuple(m for m in models if m.package == package)
+            kept = tuple(m for m in models if m.package == package or (
+                getattr(m, 'external', False) and model_key(m) not in described))
+            described.update(model_key(m) for m in kept if getattr(m, 'external', False))
+            return kept
         files.append(ModelFile(loaded.path, own(loaded.service_definitions),
                                own(loaded.components), own(loaded.systems), installed=True))
     return underlays

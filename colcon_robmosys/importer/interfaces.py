@@ -95,7 +95,7 @@ def _package_model(package: str, share: Path, listing: list[str],
     definition: dict[str, Any] = {'package': package}
     if not redeclare:
         definition['external'] = True
-    definition.update(_metadata(share / 'package.xml'))
+    definition.update(package_metadata(share / 'package.xml'))
     sections: dict[str, dict[str, Any]] = {
         'communication_objects': {}, 'queries': {}, 'actions': {}}
     stems: dict[tuple[str, str], set[str]] = {}
@@ -133,7 +133,7 @@ def _package_model(package: str, share: Path, listing: list[str],
     return model
 
 
-def _metadata(package_xml: Path) -> dict[str, Any]:
+def package_metadata(package_xml: Path) -> dict[str, Any]:
     """Return the package metadata of the model, from the package's package.xml."""
     from catkin_pkg.package import parse_package
     manifest = parse_package(str(package_xml))

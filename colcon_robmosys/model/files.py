@@ -46,6 +46,16 @@ def packages_of(data: Any) -> list[tuple[str, str]]:
             and not model.get('external')]
 
 
+def external_components_of(data: Any) -> list[str]:
+    """Return the external components (``package/executable``) the data of a file describes."""
+    components = data.get('components') if isinstance(data, dict) else None
+    return [f"{model['package']}/{model['external']['executable']}"
+            for model in (components if isinstance(components, list) else ())
+            if isinstance(model, dict) and isinstance(model.get('package'), str)
+            and isinstance(model.get('external'), dict)
+            and isinstance(model['external'].get('executable'), str)]
+
+
 def find_model_files(base_paths: Sequence[Path]) -> list[Path]:
     """Find the model files below some directories, like colcon would."""
     found = []

@@ -110,17 +110,21 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
             descriptors.add(_descriptor(
                 model.info.model_file, model.package, kind,
                 dependencies, shared))
+        generating = {m.info.model_file for m in
+                      result.workspace.generated_models}
         for model_file, declared in sorted(result.broken_files.items()):
             # the build of these packages reports the errors and fails;
-            # a file too broken to name any is named after its folder
+            # a file too broken to name any is named after its folder,
+            # unless a package it generates reports them (a broken external
+            # component beside a system)
+            if not declared and model_file in generating:
+                continue
             for name, kind in declared or [
                     (Path(model_file).parent.name, 'invalid')]:
                 descriptors.add(
                     _descriptor(model_file, name, kind, (), shared))
         # a file of external models only (nothing generated) with errors:
         # named after its folder too, so that a build reports them and fails
-        generating = {m.info.model_file for m in
-                      result.workspace.generated_models}
         ours = {str(path) for path in model_files}
         for model_file in sorted({d.location.path for d in result.errors} &
                                  ours - generating -

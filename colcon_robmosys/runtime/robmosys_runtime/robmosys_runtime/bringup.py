@@ -29,6 +29,7 @@ from ament_index_python.packages import get_package_share_directory
 import rclpy
 from rclpy.executors import MultiThreadedExecutor
 from rclpy.utilities import remove_ros_args
+from robmosys_runtime.announce import announce_system
 from robmosys_runtime.manager import Manager, report, say
 from robmosys_runtime.processes import plan_processes, Processes
 
@@ -78,6 +79,7 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
 
     rclpy.init(args=['--ros-args', '-r', f'__node:={package}_bringup'])
     node = rclpy.create_node(f'{package}_bringup')
+    announce_system(node, package)
     executor = MultiThreadedExecutor(num_threads=4)
     executor.add_node(node)
     spinner = threading.Thread(target=executor.spin, daemon=True)

@@ -22,6 +22,7 @@ from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.lifecycle import LifecycleNode, LifecycleState, TransitionCallbackReturn
 from rclpy.qos import QoSProfile
 from rclpy.timer import Timer
+from robmosys_runtime.announce import announce_component
 from robmosys_runtime.events import EventClient, EventServer
 from robmosys_runtime.ports import ActionClientPort, ActionServer, QueryClient
 
@@ -54,10 +55,10 @@ class ComponentNode(LifecycleNode):
     after the port, and release it on cleanup, shutdown and error handling.
     """
 
-    def __init__(self, node_name: str, *, ports: Iterable[str] = (),
+    def __init__(self, node_name: str, *, ports: Sequence[str] = (),
                  activities: Iterable[str] = (),
                  lifecycle: Optional[Mapping[str, Sequence[Function]]] = None,
-                 **kwargs: Any) -> None:
+                 component: Optional[str] = None, **kwargs: Any) -> None:
         """
         Create the node; nothing of its ports exists before configure.
 
@@ -66,8 +67,11 @@ class ComponentNode(LifecycleNode):
         :param lifecycle: the functions each transition runs (``on_configure``,
             ``on_activate``, ``on_deactivate``, ``on_cleanup``, ``on_shutdown``,
             ``on_error``), in order
+        :param component: a generated component's package, announced with its ports
         """
         super().__init__(node_name, **kwargs)
+        if component is not None:
+            announce_component(self, component, ports)
         self._active = False
         self.activities: Dict[str, Activity] = {name: Activity(name) for name in activities}
         self._lifecycle = {key: tuple(functions) for key, functions in (lifecycle or {}).items()}
@@ -96,7 +100,8 @@ class ComponentNode(LifecycleNode):
                          functions: Sequence[Function] = ()) -> Any:
         """Create a subscription whose messages run the functions of an activity."""
         group = self.activities[activity].callback_group if activity else None
-        callback = self.run_activity_callback(activity, functions) if activity else _drop
+        callback = (self.run_activity_callback(activity, functions) if activity
+                    else lambda message: None)  # no activity is triggered by it
         entity = self.create_subscription(msg_type, name, callback, qos, callback_group=group)
         return self._keep(name, entity, lambda: self.destroy_subscription(entity))
 
@@ -342,7 +347,3 @@ class ComponentNode(LifecycleNode):
             result = TransitionCallbackReturn.FAILURE
         self.release()
         return result
-
-
-def _drop(message: Any) -> None:
-    """Receive a message no activity is triggered by."""

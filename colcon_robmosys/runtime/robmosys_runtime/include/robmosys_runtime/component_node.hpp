@@ -104,6 +104,31 @@ protected:
     return group;
   }
 
+  /// Declare which component this node is, and the ROS name each port is on.
+  /**
+   * Read-only parameters, what `colcon robmosys-import graph` recognises a
+   * generated node by (the graph shows final names only); robmosys_runtime's
+   * announce.py declares the same in Python. A parameter file does not
+   * change them.
+   */
+  void announce(const std::string & package, const std::vector<std::string> & ports)
+  {
+    rcl_interfaces::msg::ParameterDescriptor descriptor;
+    descriptor.read_only = true;
+    descriptor.description = "The component package this node was generated from.";
+    declare_parameter("robmosys.component", rclcpp::ParameterValue(package), descriptor, true);
+    if (ports.empty()) {
+      return;
+    }
+    std::vector<std::string> names;
+    for (const auto & port : ports) {
+      // the launch files remap every kind of port with plain from:=to rules
+      names.push_back(port + "=" + get_node_topics_interface()->resolve_topic_name(port));
+    }
+    descriptor.description = "The ROS name each port of this node is on.";
+    declare_parameter("robmosys.ports", rclcpp::ParameterValue(names), descriptor, true);
+  }
+
   /// Set the functions a transition ("on_configure", "on_activate", ...) runs.
   void set_lifecycle(const std::string & transition, std::function<void()> functions)
   {

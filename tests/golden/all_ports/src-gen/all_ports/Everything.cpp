@@ -163,6 +163,22 @@ Everything::Everything(
 : robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
+  announce(
+    "all_ports", {
+      "pTick",
+      "rTick",
+      "rQuiet",
+      "qTwice",
+      "qAsk",
+      "qPlain",
+      "aCount",
+      "aUse",
+      "aPlain",
+      "eLevel",
+      "eAll",
+      "eWatch",
+      "eQuiet",
+    });
   {
     rcl_interfaces::msg::ParameterDescriptor descriptor;
     descriptor.description = "A \"level\".";

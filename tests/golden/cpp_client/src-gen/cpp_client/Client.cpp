@@ -28,6 +28,10 @@ Client::Client(
 : robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
+  announce(
+    "cpp_client", {
+      "qAdd",
+    });
   add_activity("Ask");
   add_activity("OnAnswer");
   set_lifecycle(

@@ -54,6 +54,10 @@ DummyJointStates::DummyJointStates(
 : robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
+  announce(
+    "cpp_dummy_joint_states", {
+      "joint_states",
+    });
   {
     rcl_interfaces::msg::ParameterDescriptor descriptor;
     descriptor.description = "The joints whose states are published.";

@@ -59,6 +59,10 @@ DummyLaser::DummyLaser(
 : robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
+  announce(
+    "cpp_dummy_laser", {
+      "scan",
+    });
   {
     rcl_interfaces::msg::ParameterDescriptor descriptor;
     descriptor.description = "The frame of the scans.";

@@ -64,6 +64,10 @@ DummyMapServer::DummyMapServer(
 : robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
+  announce(
+    "cpp_dummy_map_server", {
+      "map",
+    });
   {
     rcl_interfaces::msg::ParameterDescriptor descriptor;
     descriptor.description = "Cells along x.";

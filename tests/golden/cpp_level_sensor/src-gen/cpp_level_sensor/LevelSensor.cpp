@@ -44,6 +44,10 @@ LevelSensor::LevelSensor(
 : robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
+  announce(
+    "cpp_level_sensor", {
+      "eLevel",
+    });
   add_activity("Measure");
   add_activity("Condition");
 }

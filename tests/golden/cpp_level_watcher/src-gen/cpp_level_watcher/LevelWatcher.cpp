@@ -49,6 +49,10 @@ LevelWatcher::LevelWatcher(
 : robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
+  announce(
+    "cpp_level_watcher", {
+      "eLevel",
+    });
   {
     rcl_interfaces::msg::ParameterDescriptor descriptor;
     descriptor.description = "Notify levels at or above it.";

@@ -54,6 +54,10 @@ PeriodicPublisher::PeriodicPublisher(
 : robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
+  announce(
+    "cpp_publisher", {
+      "pMap",
+    });
   {
     rcl_interfaces::msg::ParameterDescriptor descriptor;
     descriptor.description = "Whether the robot is indoors.";

@@ -43,6 +43,10 @@ Receiver::Receiver(
 : robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
+  announce(
+    "cpp_receiver", {
+      "sMap",
+    });
   add_activity("Receive");
 }
 

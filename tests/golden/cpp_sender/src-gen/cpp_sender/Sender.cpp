@@ -59,6 +59,10 @@ Sender::Sender(
 : robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
+  announce(
+    "cpp_sender", {
+      "sMap",
+    });
   {
     rcl_interfaces::msg::ParameterDescriptor descriptor;
     descriptor.description = "Cells along x.";

@@ -27,6 +27,10 @@ Server::Server(
 : robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
+  announce(
+    "cpp_server", {
+      "qAdd",
+    });
   add_activity("Answer");
 }
 

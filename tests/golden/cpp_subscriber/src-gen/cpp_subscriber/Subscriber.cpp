@@ -43,6 +43,10 @@ Subscriber::Subscriber(
 : robmosys_runtime::ComponentNode(node_name, options),
   params_(*this)
 {
+  announce(
+    "cpp_subscriber", {
+      "rMap",
+    });
   add_activity("HandleMsg");
 }
 

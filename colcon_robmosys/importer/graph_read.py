@@ -1,0 +1,278 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""What the running ROS 2 graph shows of its nodes, read with rclpy.
+
+A snapshot holds, for every node: its publishers, subscriptions, services,
+clients, action servers and action clients with their types (and the QoS of
+its topics: reliability, durability, deadline, lifespan, liveliness), its
+parameters with their values and descriptors, whether it is a lifecycle node,
+and what a node of robmosys_runtime announces of itself (robmosys_runtime's
+announce.py). Nothing here decides what a model says: :mod:`.graph` does.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+import os
+import time
+from typing import Any
+
+#: entities every node has: not ports
+_OWN_SERVICES = frozenset((
+    'describe_parameters', 'get_parameter_types', 'get_parameters', 'list_parameters',
+    'set_parameters', 'set_parameters_atomically', 'get_type_description',
+    'change_state', 'get_state', 'get_available_states', 'get_available_transitions',
+    'get_transition_graph'))
+_OWN_TOPICS = frozenset(('/rosout', '/parameter_events'))
+#: parameters rclpy and rclcpp declare on every node
+_AUTOMATIC_PARAMETERS = ('use_sim_time', 'start_type_description_service')
+#: a duration from this on is DDS's infinity (Fast DDS: 2^31 - 1 s and 2^32 - 1 ns)
+_INFINITE_NS = (2 ** 31 - 1) * 10 ** 9
+
+#: ParameterType -> the model's parameter type
+PARAMETER_TYPES = {1: 'bool', 2: 'int', 3: 'double', 4: 'string', 5: 'byte[]',
+                   6: 'bool[]', 7: 'int[]', 8: 'double[]', 9: 'string[]'}
+
+
+@dataclass
+class Endpoint:
+    """One publisher, subscription, server or client of a node."""
+
+    #: publisher, subscription, service, client, action_server, action_client
+    kind: str
+    name: str
+    type: str
+    #: the policies the graph shows (topics only): reliability, durability,
+    #: deadline, lifespan, liveliness, liveliness_lease_duration
+    qos: dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass
+class GraphParameter:
+    """A parameter of a node, its current value and its descriptor."""
+
+    name: str
+    #: the model's type; '' when it has no value (not set)
+    type: str
+    value: Any
+    description: str = ''
+    read_only: bool = False
+    #: (from, to, step) of an integer or floating point range
+    range: tuple[Any, Any, Any] | None = None
+
+
+@dataclass
+class GraphNode:
+    """A node of the graph, as far as the graph shows it."""
+
+    name: str
+    namespace: str
+    endpoints: list[Endpoint] = field(default_factory=list)
+    #: None: the node did not answer the parameter services
+    parameters: list[GraphParameter] | None = None
+    lifecycle: bool = False
+    #: a component container (rclcpp_components): it holds other nodes
+    container: bool = False
+
+    @property
+    def fqn(self) -> str:
+        """Return the fully qualified name of the node."""
+        return f"{self.namespace.rstrip('/')}/{self.name}"
+
+    def parameter(self, name: str) -> Any:
+        """Return a parameter's value, None if the node has no such parameter."""
+        for parameter in self.parameters or ():
+            if parameter.name == name:
+                return parameter.value
+        return None
+
+
+def read_graph(namespace: str | None, timeout: float, *,
+               settle: float = 3.5) -> list[GraphNode]:
+    """Return the nodes of the graph of the current domain (under a namespace).
+
+    Discovery takes time: the graph is read again until it has not changed for
+    ``settle`` seconds (longer than Fast DDS's period of participant
+    announcements, 3 s: a participant that missed the first ones is heard
+    then), or ``timeout`` seconds have passed.
+
+    :raises ImportError: if rclpy is not installed
+    """
+    import rclpy
+    from rclpy.executors import SingleThreadedExecutor
+    context = rclpy.Context()
+    rclpy.init(context=context, args=[])
+    try:
+        node = rclpy.create_node(f'_robmosys_import_{os.getpid()}', context=context,
+                                 start_parameter_services=False)
+        executor = SingleThreadedExecutor(context=context)
+        executor.add_node(node)
+        end = time.monotonic() + timeout
+        nodes, stable_since = _snapshot(node, namespace), time.monotonic()
+        # an empty graph is waited on until the timeout: the system may be starting
+        while time.monotonic() < end and (
+                not nodes or time.monotonic() - stable_since < settle):
+            executor.spin_once(timeout_sec=0.1)
+            again = _snapshot(node, namespace)
+            if again != nodes:
+                nodes, stable_since = again, time.monotonic()
+        for graph_node in nodes:
+            _read_qos(node, graph_node)
+        _read_parameters(node, executor, nodes, max(end - time.monotonic(), 2.0))
+        return nodes
+    finally:
+        rclpy.shutdown(context=context)
+
+
+def _under(namespace: str, prefix: str | None) -> bool:
+    if prefix is None or prefix.rstrip('/') == '':
+        return True
+    prefix = '/' + prefix.strip('/')
+    return namespace == prefix or namespace.startswith(prefix + '/')
+
+
+def _snapshot(node: Any, namespace: str | None) -> list[GraphNode]:
+    from rclpy.action import graph as action_graph
+    found = []
+    for name, node_namespace in sorted(node.get_node_names_and_namespaces(),
+                                       key=lambda n: (n[1], n[0])):
+        if name.startswith('_') or not _under(node_namespace, namespace):
+            continue  # hidden nodes (this one, ros2cli's daemon) and other namespaces
+        graph_node = GraphNode(name, node_namespace)
+        lists = (
+            ('publisher', node.get_publisher_names_and_types_by_node),
+            ('subscription', node.get_subscriber_names_and_types_by_node),
+            ('service', node.get_service_names_and_types_by_node),
+            ('client', node.get_client_names_and_types_by_node),
+            ('action_server', lambda n, ns: action_graph.get_action_server_names_and_types_by_node(
+                node, n, ns)),
+            ('action_client', lambda n, ns: action_graph.get_action_client_names_and_types_by_node(
+                node, n, ns)),
+        )
+        try:
+            for kind, names_and_types in lists:
+                for topic, types in names_and_types(name, node_namespace):
+                    graph_node.endpoints.append(Endpoint(kind, topic, types[0] if types else ''))
+        except Exception:  # noqa: B902 - the node went away while it was read
+            continue
+        graph_node.lifecycle = any(e.kind == 'service' and e.name == f'{graph_node.fqn}/get_state'
+                                   for e in graph_node.endpoints)
+        graph_node.container = any(e.kind == 'service' and
+                                   e.name == f'{graph_node.fqn}/_container/load_node'
+                                   for e in graph_node.endpoints)
+        graph_node.endpoints = sorted(
+            (e for e in graph_node.endpoints if not _infrastructure(e, graph_node.fqn)),
+            key=lambda e: (e.name, e.kind))
+        found.append(graph_node)
+    return found
+
+
+def _infrastructure(endpoint: Endpoint, fqn: str) -> bool:
+    """Return whether an endpoint is one every node (or every action) has."""
+    name = endpoint.name
+    if name in _OWN_TOPICS or '/_action/' in name:
+        return True
+    if name.startswith(fqn + '/'):
+        rest = name[len(fqn) + 1:]
+        if rest in _OWN_SERVICES or rest == 'transition_event' or rest.startswith('_'):
+            return True
+    # a hidden name (a segment starting with _) is nobody's port
+    return any(segment.startswith('_') for segment in name.split('/'))
+
+
+def _read_qos(node: Any, graph_node: GraphNode) -> None:
+    """Read the QoS of a node's topics."""
+    for endpoint in graph_node.endpoints:
+        if endpoint.kind == 'publisher':
+            infos = node.get_publishers_info_by_topic(endpoint.name)
+        elif endpoint.kind == 'subscription':
+            infos = node.get_subscriptions_info_by_topic(endpoint.name)
+        else:
+            continue
+        for info in infos:
+            if (info.node_name, info.node_namespace) == (graph_node.name, graph_node.namespace):
+                endpoint.qos = _qos(info.qos_profile)
+                break
+
+
+def _qos(profile: Any) -> dict[str, Any]:
+    qos: dict[str, Any] = {
+        'reliability': profile.reliability.name.lower(),
+        'durability': profile.durability.name.lower(),
+    }
+    for policy in ('deadline', 'lifespan', 'liveliness_lease_duration'):
+        nanoseconds = getattr(profile, policy).nanoseconds
+        if 0 < nanoseconds < _INFINITE_NS:
+            qos[policy] = nanoseconds / 1e9
+    qos['liveliness'] = profile.liveliness.name.lower()
+    return qos
+
+
+def _calls(node: Any, executor: Any, srv_type: Any, requests: dict[str, Any],
+           end: float) -> dict[str, Any]:
+    """Call a service of many nodes at once; return service name -> response."""
+    clients = {name: node.create_client(srv_type, name) for name in requests}
+    futures: dict[str, Any] = {}
+    try:
+        while len(futures) < len(clients) and time.monotonic() < end:
+            for name, client in clients.items():
+                if name not in futures and client.service_is_ready():
+                    futures[name] = client.call_async(requests[name])
+            executor.spin_once(timeout_sec=0.05)
+        while not all(f.done() for f in futures.values()) and time.monotonic() < end:
+            executor.spin_once(timeout_sec=0.05)
+        return {name: future.result() for name, future in futures.items() if future.done()}
+    finally:
+        for client in clients.values():
+            node.destroy_client(client)
+
+
+def _read_parameters(node: Any, executor: Any, nodes: list[GraphNode], timeout: float) -> None:
+    """Read the parameters of every node: their names, descriptors and values."""
+    from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters
+    end = time.monotonic() + timeout
+    listed = _calls(node, executor, ListParameters, {
+        f'{n.fqn}/list_parameters': ListParameters.Request() for n in nodes}, end)
+    names: dict[str, list[str]] = {}
+    for graph_node in nodes:
+        response = listed.get(f'{graph_node.fqn}/list_parameters')
+        if response is not None:
+            names[graph_node.fqn] = sorted(
+                n for n in response.result.names if n not in _AUTOMATIC_PARAMETERS and
+                not n.startswith('qos_overrides.'))
+    described = _calls(node, executor, DescribeParameters, {
+        f'{fqn}/describe_parameters': DescribeParameters.Request(names=listed_names)
+        for fqn, listed_names in names.items()}, end)
+    values = _calls(node, executor, GetParameters, {
+        f'{fqn}/get_parameters': GetParameters.Request(names=listed_names)
+        for fqn, listed_names in names.items()}, end)
+    for graph_node in nodes:
+        descriptors = described.get(f'{graph_node.fqn}/describe_parameters')
+        got = values.get(f'{graph_node.fqn}/get_parameters')
+        if descriptors is None or got is None:
+            continue  # it did not answer: parameters stay None
+        graph_node.parameters = [
+            _parameter(name, descriptor, value) for name, descriptor, value in zip(
+                names[graph_node.fqn], descriptors.descriptors, got.values)]
+
+
+def _parameter(name: str, descriptor: Any, value: Any) -> GraphParameter:
+    parameter = GraphParameter(name, PARAMETER_TYPES.get(value.type, ''), _value(value),
+                               descriptor.description, descriptor.read_only)
+    for ranges in (descriptor.integer_range, descriptor.floating_point_range):
+        if ranges:
+            parameter.range = (ranges[0].from_value, ranges[0].to_value, ranges[0].step)
+    return parameter
+
+
+def _value(value: Any) -> Any:
+    fields = {1: 'bool_value', 2: 'integer_value', 3: 'double_value', 4: 'string_value',
+              5: 'byte_array_value', 6: 'bool_array_value', 7: 'integer_array_value',
+              8: 'double_array_value', 9: 'string_array_value'}
+    if value.type not in fields:
+        return None
+    read = getattr(value, fields[value.type])
+    if value.type == 5:
+        return [b if isinstance(b, int) else ord(b) for b in read]
+    return list(read) if value.type > 5 else read

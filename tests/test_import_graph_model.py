@@ -1,0 +1,145 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""The model `robmosys-import graph` makes of a graph: from snapshots, without ROS.
+
+tests/test_import_graph.py reads real graphs; here the snapshot is written by
+hand, to pin what each kind of node becomes: generated nodes refer to their
+component, other nodes become external components (their process tells their
+package and own names), ports on one name are connected, names two nodes share
+are told apart, and every text stays text.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+import textwrap
+
+import yaml
+
+from colcon_robmosys.check import load_model_file
+from colcon_robmosys.importer.graph import import_graph
+from colcon_robmosys.importer.graph_read import Endpoint, GraphNode, GraphParameter
+from colcon_robmosys.importer.graph_yaml import Commented, dump
+from colcon_robmosys.importer.processes import NodeProcess, parse_command_line, process_of
+
+COMPONENT = textwrap.dedent("""
+    robmosys: 1
+    components:
+      - name: Pub
+        package: pub_pkg
+        language: python
+        license: MIT
+        maintainers: [{name: A, email: a@example.com}]
+        ports:
+          pText: {pattern: push, role: provided, type: std_msgs/msg/String}
+          qAsk: {pattern: query, role: required, type: std_srvs/srv/Trigger}
+        parameters:
+          rate: {type: int, default: 10}
+          label: {type: string, default: plain}
+""")
+
+
+def _generated(name: str, namespace: str, ports: list[str], **values) -> GraphNode:
+    parameters = [GraphParameter('robmosys.component', 'string', 'pub_pkg'),
+                  GraphParameter('robmosys.ports', 'string[]', ports)]
+    parameters += [GraphParameter(k, type(v).__name__, v) for k, v in values.items()]
+    return GraphNode(name, namespace, [], parameters, lifecycle=True)
+
+
+def test_a_snapshot_becomes_instances_components_and_connections(tmp_path: Path):
+    (tmp_path / 'robmosys.yaml').write_text(COMPONENT, encoding='utf-8')
+    [component] = load_model_file(tmp_path / 'robmosys.yaml').components
+    nodes = [
+        # generated, twice under one name: told apart, the values it changed kept
+        _generated('pub', '/a', ['pText=/a/pub/pText', 'qAsk=/srv/ask'], rate=10,
+                   label='a: "b" # c'),
+        _generated('pub', '/b', ['pText=/b/pub/pText', 'qAsk=/b/qAsk'], rate=20,
+                   label='plain'),
+        # nobody's: a server on the name a generated client uses, process unknown
+        GraphNode('srv', '/', [Endpoint('service', '/srv/ask', 'std_srvs/srv/Trigger')], []),
+        # nobody's, its process known: its own name undone from the remapping
+        GraphNode('listener', '/', [Endpoint(
+            'subscription', '/a/pub/pText', 'std_msgs/msg/String',
+            {'reliability': 'best_effort', 'durability': 'volatile',
+             'liveliness': 'automatic'})], [
+            GraphParameter('gain', 'double', 0.5, 'Gain\nsecond line', True, (0.0, 1.0, 0.0)),
+            GraphParameter('nested.value', 'int', 1), GraphParameter('unset', '', None)]),
+        # a manager node is no instance
+        GraphNode('sys_bringup', '/', [], [GraphParameter('robmosys.system', 'string', 'sys')]),
+    ]
+    process = NodeProcess('listeners', 'listener', 'cpp', 'listener', '', {'in': '/a/pub/pText'})
+    text = import_graph(
+        nodes, 'snap_system', {'pub_pkg': component}, {}, [process],
+        lambda package: ('BSD-3-Clause', [('L', 'l@example.com')]), header='Test.')
+    model = yaml.safe_load(text)
+    instances = model['systems'][0]['instances']
+    assert instances == {
+        'a_pub': {'component': 'pub_pkg', 'namespace': '/a',
+                  'parameters': {'label': 'a: "b" # c'}},
+        'b_pub': {'component': 'pub_pkg', 'namespace': '/b', 'parameters': {'rate': 20}},
+        'listener': {'component': 'listeners/listener'},
+        'srv': {'component': 'srv/srv'},
+    }, text
+    assert '# node /a/pub: renamed, another node has its name' in text
+    assert '# /sys_bringup brings up the system sys: not an instance' in text
+    listener, srv = model['components']
+    assert listener['language'] == 'cpp' and listener['license'] == 'BSD-3-Clause', text
+    # 'in' is a keyword of Python: the port is named apart from the node's own name
+    assert listener['ports'] == {'in_port': {
+        'pattern': 'push', 'role': 'required', 'type': 'std_msgs/msg/String', 'name': 'in',
+        'qos': {'reliability': 'best_effort', 'durability': 'volatile'}}}, text
+    assert listener['parameters'] == {'gain': {
+        'type': 'double', 'default': 0.5, 'description': 'Gain\nsecond line', 'read_only': True,
+        'range': {'from': 0.0, 'to': 1.0}}}, text
+    assert 'parameters not written: nested.value (not a name a model can hold), unset ' \
+        '(no value)' in ' '.join(line.strip('# ') for line in text.splitlines())
+    # unknown process: the node's name stands for package and executable, and the
+    # metadata is the system's (that of its components, most common first)
+    assert srv['package'] == 'srv' and srv['external'] == {
+        'executable': 'srv', 'lifecycle': False}, text
+    assert srv['license'] == model['systems'][0]['license'], text
+    # a renamed instance's default names would change: its names are kept as topics;
+    # a provided port alone on a name not its own keeps it too
+    assert model['systems'][0]['connections'] == [
+        {'to': 'b_pub.qAsk', 'topic': '/b/qAsk'},
+        {'from': 'a_pub.pText', 'to': 'listener.in_port', 'topic': '/a/pub/pText'},
+        {'from': 'b_pub.pText', 'topic': '/b/pub/pText'},
+        {'from': 'srv.ask', 'to': 'a_pub.qAsk'},
+    ], text
+
+
+def test_command_lines_tell_package_executable_language_and_remappings(tmp_path: Path):
+    script = tmp_path / 'lib' / 'demo_nodes' / 'talker'
+    script.parent.mkdir(parents=True)
+    script.write_text('#!/usr/bin/env python3\n', encoding='utf-8')
+    binary = tmp_path / 'lib' / 'demo_nodes' / 'listener'
+    binary.write_bytes(b'\x7fELF\x02\x01')
+    talker = parse_command_line(['python3', str(script), '--ros-args', '-r', '__node:=t',
+                                 '-r', '__ns:=/robot', '--remap', 'chatter:=/talk',
+                                 '-r', 'other:foo:=bar', '--params-file', 'p.yaml'])
+    assert talker == NodeProcess('demo_nodes', 'talker', 'python', 't', '/robot',
+                                 {'chatter': '/talk'})
+    listener = parse_command_line([str(binary)])
+    assert listener == NodeProcess('demo_nodes', 'listener', 'cpp')
+    assert parse_command_line(['python3', 'script.py']) is None
+    assert process_of([talker, listener], 't', '/robot') is talker
+    assert process_of([talker, listener], 'listener', '/') is listener
+    # the same node twice: the executable is known, remappings that differ are not
+    again = NodeProcess('demo_nodes', 'talker', 'python', 't', '/robot', {'chatter': '/x'})
+    both = process_of([talker, again], 't', '/robot')
+    assert both is not None and both.executable == 'talker' and both.remappings == {}
+    assert process_of([talker, NodeProcess('other', 'talker', 'python', 't', '/robot')],
+                      't', '/robot') is None
+
+
+def test_hostile_text_reads_back_and_comments_stay_comments():
+    hostile = ['a: b', '- c', '#d', '\'e"', 'x\ny', '{f: [g]}', '\\h', 'yes', 'null', '1e3',
+               'é ∑ \u2028', '']
+    data = {'robmosys': 1, 'values': Commented(
+        {f'k{i}': value for i, value in enumerate(hostile)}, ['above\n# not\nmine'],
+        'after')}
+    text = dump(data, ['first\nsecond'])
+    assert yaml.safe_load(text)['values'] == {f'k{i}': v for i, v in enumerate(hostile)}
+    comments = [line for line in text.splitlines() if line.lstrip().startswith('#')]
+    assert comments[0] == '# first second'
+    assert '# above # not mine' in text
