@@ -156,6 +156,10 @@ PROBE = textwrap.dedent("""
     node.create_publisher(String, 'status', qos)
     node.create_subscription(String, '/commands', lambda message: None, 10)
     node.create_service(Trigger, 'reset', lambda request, response: response)
+    from example_msgs.action import Fibonacci
+    from rclpy.action import ActionClient, ActionServer
+    ActionServer(node, Fibonacci, 'count', lambda goal: Fibonacci.Result())
+    ActionClient(node, Fibonacci, '/planner/plan')
     print('probe up', flush=True)
     try:
         rclpy.spin(node)
@@ -192,6 +196,10 @@ def test_a_node_nobody_modelled_becomes_an_external_component(test_workspace_bui
                      'name': '/commands',
                      'qos': {'reliability': 'reliable', 'durability': 'volatile'}},
         'reset': {'pattern': 'query', 'role': 'provided', 'type': 'std_srvs/srv/Trigger'},
+        'count': {'pattern': 'action', 'role': 'provided',
+                  'type': 'example_msgs/action/Fibonacci'},
+        'plan': {'pattern': 'action', 'role': 'required', 'type': 'example_msgs/action/Fibonacci',
+                 'name': '/planner/plan'},
     }, text
     # hostile text is read back as it was
     assert component['parameters'] == {
@@ -210,7 +218,8 @@ def test_a_node_nobody_modelled_becomes_an_external_component(test_workspace_bui
         'graph_probe': {'component': 'graph_probe/graph_probe', 'namespace': '/lab'}}, text
     # its ports keep their names: /lab/status is the port's own; the subscription
     # listens on a name outside the model
-    assert system['connections'] == [{'to': 'graph_probe.commands', 'topic': '/commands'}]
+    assert system['connections'] == [{'to': 'graph_probe.commands', 'topic': '/commands'},
+                                     {'to': 'graph_probe.plan', 'topic': '/planner/plan'}]
     _validate(env, tmp_path / 'ws')
 
 

@@ -298,8 +298,10 @@ class SystemActivation:
                 self._clients[(name, service)] = client
         timeout = self._start_timeout if timeout is None else timeout
         deadline = time.monotonic() + timeout
-        while not client.wait_for_service(timeout_sec=0.2):
-            if self._stop.is_set() or not self._node.context.ok() or name in self._failed:
+        # not wait_for_service(): it sleeps in steps of 0.25 s, which every
+        # instance would pay on its way up
+        while not client.service_is_ready():
+            if self._stop.wait(0.02) or not self._node.context.ok() or name in self._failed:
                 raise _Stopped()
             if time.monotonic() > deadline:
                 raise _Failed(f'did not appear within {timeout:g} s')
@@ -337,7 +339,8 @@ class SystemActivation:
                 return state
             now = f'it is {state}' if state else 'it does not answer'
             raise _Failed(f'did not {VERBS[transition]} within {timeout:g} s ({now})')
-        state = self._get_state(name) or 'unknown'
         if not answer.success:
+            state = self._get_state(name) or 'unknown'
             raise _Failed(f'failed to {VERBS[transition]} (it is {state})')
-        return state
+        # a transition that succeeded ends in its goal state: no need to ask
+        return GOAL_STATES[transition]

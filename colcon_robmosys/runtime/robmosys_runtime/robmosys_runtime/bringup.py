@@ -100,7 +100,7 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     status = 0
     try:
         manager.start()
-        while manager.activation.running() and not signalled.wait(0.2):
+        while manager.activation.running() and not signalled.wait(0.02):
             pass
         if not signalled.is_set():
             outcome = manager.activation.wait()
