@@ -163,6 +163,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument('--hang-runs', type=int, default=30,
                         help='bring-ups in a row of the --hang-size system (default: 30)')
     parser.add_argument('--hang-size', type=int, default=20)
+    parser.add_argument('--layouts', nargs='+', choices=('per-instance', 'shared'),
+                        default=['per-instance', 'shared'],
+                        help='process layouts of the systems of --sizes (default: both)')
     parser.add_argument('--hang-layout', choices=('per-instance', 'shared'),
                         default='per-instance')
     parser.add_argument('--timeout', type=float, default=240.0,
@@ -183,7 +186,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                                                            root / 'hear.json'), 1)}
         for size in args.sizes:
             path = subset(install, names[:size], root / f'system_{size}.json')
-            for layout in ('per-instance', 'shared'):
+            for layout in args.layouts:
                 cases[(f'{size} instances', layout)] = (path, size)
         times: dict[tuple[str, str], list[float]] = {case: [] for case in cases}
         for round_ in range(args.rounds):
