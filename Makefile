@@ -1,6 +1,8 @@
 # Development entry points. Needs only python3 (with venv and headers), gcc, cmake,
 # make and git: ROS 2 itself comes from PyPI into .venv (see requirements/ros.txt).
 #   make test   run the test suite (PYTEST_ARGS='-k foo' to narrow it)
+#   ROS_DISTRO=jazzy (on the command line: make test ROS_DISTRO=jazzy) does the same on
+#               ROS 2 Jazzy, in .venv-jazzy; Kilted is the default
 #   make demo   run tools/demo.py
 #   make clean  remove the venv and the test workspace's build results
 #   make bench  run the four benchmarks of bench/ (or one: make bench-generation,
@@ -9,7 +11,20 @@
 
 PYTHON ?= python3
 PYTEST_ARGS ?=
+
+# The ROS 2 distribution of the venv, from its ros-* wheels on PyPI: kilted (the
+# default) or jazzy, each in a venv of its own. Only the command line chooses it: the
+# ROS_DISTRO of a sourced /opt/ros/<distro> does not change which venv the tests use.
+ROS_DISTRO := $(if $(filter command line,$(origin ROS_DISTRO)),$(ROS_DISTRO),kilted)
+ifeq ($(ROS_DISTRO),kilted)
 VENV := .venv
+ROS_REQUIREMENTS := requirements/ros.txt
+else ifeq ($(ROS_DISTRO),jazzy)
+VENV := .venv-jazzy
+ROS_REQUIREMENTS := requirements/ros-jazzy.txt
+else
+$(error ROS_DISTRO=$(ROS_DISTRO): the ros-* wheels on PyPI are kilted (the default) and jazzy)
+endif
 VPY := $(VENV)/bin/python
 
 # The package is installed non-editable, so tests see what users get (entry points,
@@ -27,12 +42,12 @@ endif
 venv: $(VENV)/.stamp-package
 
 # The ROS 2 prefix: requirements, then the fix-ups the ros-* wheels need.
-$(VENV)/.stamp-ros: requirements/ros.txt tools/bootstrap_ros_wheels.py
+$(VENV)/.stamp-ros: $(ROS_REQUIREMENTS) tools/bootstrap_ros_wheels.py
 	@test -x $(VPY) || $(PYTHON) -m venv $(VENV) || { \
 	  echo "error: '$(PYTHON) -m venv' failed (on Debian/Ubuntu: apt-get install python3-venv)"; \
 	  exit 1; }
 	$(VPY) -m pip install --upgrade pip
-	$(VPY) -m pip install -r requirements/ros.txt
+	$(VPY) -m pip install -r $(ROS_REQUIREMENTS)
 	$(VPY) tools/bootstrap_ros_wheels.py
 	@touch $@
 

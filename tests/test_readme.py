@@ -66,3 +66,20 @@ def test_the_shell_lines_of_readme_build_a_workspace(tmp_path):
 def test_documents_hold_no_machine_path(document: Path):
     found = [line for line in document.read_text().splitlines() if MACHINE_PATH.search(line)]
     assert found == []
+
+
+#: what Jazzy's wheel list leaves out of Kilted's: packages Jazzy does not have
+KILTED_ONLY = {'ros-ament-cmake-ros-core'}
+
+
+def _requirements(name: str) -> list[str]:
+    lines = (REPO / 'requirements' / name).read_text(encoding='utf-8').splitlines()
+    return [re.split(r'[\[<>=]', line)[0] for line in lines if line and not line.startswith('#')]
+
+
+def test_the_wheel_lists_of_the_distributions_agree():
+    """`make venv ROS_DISTRO=jazzy` installs what the Kilted venv has, from ros-jazzy-*."""
+    kilted = _requirements('ros.txt')
+    jazzy = _requirements('ros-jazzy.txt')
+    assert [name.replace('ros-', 'ros-jazzy-', 1) if name.startswith('ros-') else name
+            for name in kilted if name not in KILTED_ONLY] == jazzy
