@@ -236,6 +236,8 @@ def test_lifecycle_of_a_sender_and_a_receiver(test_workspace_built):
 
         # an inactive receiver runs no user code for what arrives
         assert driver.transition(r, 'deactivate')
+        # a callback that had begun before the transition may still print: let it end
+        wait_until(lambda: False, 0.5)
         received = _count(r'received hi there', receiver.output())
         sent = _count(r'sent \d+', sender.output())
         assert wait_until(lambda: _count(r'sent \d+', sender.output()) >= sent + 3, 5)
@@ -244,7 +246,7 @@ def test_lifecycle_of_a_sender_and_a_receiver(test_workspace_built):
 
         # deactivated: the timer stops, nothing is published
         assert driver.transition(s, 'deactivate')
-        wait_until(lambda: False, 0.3)
+        wait_until(lambda: False, 0.5)
         sent = _count(r'sent \d+', sender.output())
         received = _count(r'received hi there', receiver.output())
         wait_until(lambda: False, 1.2)

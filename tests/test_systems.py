@@ -78,6 +78,12 @@ def expected_remappings(system: System) -> dict[str, set[tuple[str, str]]]:
             # an external node's port goes by the node's own name for it
             port = _component(system, end.instance).port(end.port)
             remappings[end.instance].add((port.node_name, name))
+            # Jazzy remaps an action only through its services and topics
+            if port.pattern in (Pattern.ACTION, Pattern.EVENT):
+                remappings[end.instance].update(
+                    (f'{port.node_name}/_action/{part}', f'{name}/_action/{part}')
+                    for part in ('send_goal', 'cancel_goal', 'get_result', 'feedback',
+                                 'status'))
     return remappings
 
 

@@ -128,16 +128,39 @@ def _node(instance: Instance, component: Component,
         instance=instance.name, package=component.package,
         executable=component.executable_name, name=instance.node_name,
         namespace=instance.namespace,
-        # the name the node gives a port: the port's, or an external node's own
-        remappings=tuple((p.node_name, topics[(instance.name, p.name)])
-                         for p in component.ports
-                         if (instance.name, p.name) in topics),
+        remappings=_remappings(instance, component, topics),
         # a plain node cannot be configured nor activated: started only
         activate=instance.activate and component.lifecycle_node,
         lifecycle=component.lifecycle_node, after=instance.after,
         fqn=node_fqn(instance), respawn=instance.respawn, timeout=instance.timeout,
         host=instance.host,
         python_class=_python_class(component), plugin=_plugin(component))
+
+
+#: the services and topics of an action, below its name
+ACTION_PARTS = ('_action/send_goal', '_action/cancel_goal', '_action/get_result',
+                '_action/feedback', '_action/status')
+
+
+def _remappings(instance: Instance, component: Component,
+                topics: dict[tuple[str, str], str]) -> tuple[tuple[str, str], ...]:
+    """Return the remapping rules that give the connected ports their ROS 2 names.
+
+    The name a node gives a port is the port's, or an external node's own. Jazzy
+    remaps an action only through the services and topics it is made of (ros2/rcl
+    #1170 came in Kilted, which then ignores those rules), so an action's parts get
+    rules of their own, and the same launch files work on both.
+    """
+    rules = []
+    for port in component.ports:
+        target = topics.get((instance.name, port.name))
+        if target is None:
+            continue
+        rules.append((port.node_name, target))
+        if port_kind(port).uses_actions:
+            rules += [(f'{port.node_name}/{part}', f'{target}/{part}')
+                      for part in ACTION_PARTS]
+    return tuple(rules)
 
 
 def _python_class(component: Component) -> str:
