@@ -105,7 +105,6 @@ def test_layout_of_the_reference(generated_cpp):
         '.robmosys-generated', 'CMakeLists.txt', 'package.xml',
         'src-gen/cpp_subscriber/Subscriber.hpp', 'src-gen/cpp_subscriber/Subscriber.cpp',
         'src-gen/cpp_subscriber/Subscriber_main.cpp',
-        'src-gen/cpp_subscriber/Subscriber_component.cpp',
         'src-skel/cpp_subscriber/Subscriber_impl.hpp',
         'src-skel/cpp_subscriber/Subscriber_impl.cpp',
         'src/cpp_subscriber/Subscriber_impl.hpp', 'src/cpp_subscriber/Subscriber_impl.cpp',
@@ -121,6 +120,17 @@ def test_layout_of_the_reference(generated_cpp):
         '"${ROBMOSYS_USER_CODE}/*.cpp")' in cmake
     assert 'rclcpp_components_register_nodes(${PROJECT_NAME}_component ' \
         '"cpp_subscriber::Subscriber_impl")' in cmake
+    # the node is compiled once, in the library: its registration and its process
+    # (run_Subscriber) with it, and a main that includes nothing, linked with it
+    src = generated_cpp / 'cpp_subscriber' / 'src-gen' / 'cpp_subscriber'
+    node = (src / 'Subscriber.cpp').read_text()
+    assert 'RCLCPP_COMPONENTS_REGISTER_NODE(cpp_subscriber::Subscriber_impl)' in node
+    assert 'robmosys_runtime::run<Subscriber_impl>(' in node
+    main = (src / 'Subscriber_main.cpp').read_text()
+    assert '#include' not in main and 'return cpp_subscriber::run_Subscriber(argc, argv);' in main
+    assert 'add_executable(Subscriber src-gen/cpp_subscriber/Subscriber_main.cpp)\n' \
+        'target_link_libraries(Subscriber ${PROJECT_NAME}_component)' in cmake
+    assert cmake.count('src-gen/cpp_subscriber/Subscriber.cpp') == 1
 
 
 def _cpp_files(root: Path) -> list[Path]:

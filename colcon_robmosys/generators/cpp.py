@@ -19,7 +19,6 @@ FILES = (
     Row(f'{_SRC}/{{cls}}.hpp', 'component_cpp/node.hpp.jinja'),
     Row(f'{_SRC}/{{cls}}.cpp', 'component_cpp/node.cpp.jinja'),
     Row(f'{_SRC}/{{cls}}_main.cpp', 'component_cpp/main.cpp.jinja'),
-    Row(f'{_SRC}/{{cls}}_component.cpp', 'component_cpp/component.cpp.jinja'),
     Row('CMakeLists.txt', 'component_cpp/CMakeLists.txt.jinja'),
     Row('package.xml', 'common/package.xml.jinja', part='package_xml'),
     Row(f'{_SKEL}.hpp', 'component_cpp/impl.hpp.jinja', when='has_impl',

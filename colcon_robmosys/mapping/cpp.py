@@ -317,7 +317,7 @@ def spell_cpp(component: Component, plan: ComponentPlan,
         interface_packages=interfaces,
         # the user's sources are compiled where they live (the template
         # finds them): only the generated ones here
-        sources=(f'{src}/{cls}.cpp', f'{src}/{cls}_component.cpp'),
+        sources=(f'{src}/{cls}.cpp',),
         prefix_requirements=client_packages,
         package_xml=package_xml(
             banner, component.info, buildtool=['ament_cmake'],

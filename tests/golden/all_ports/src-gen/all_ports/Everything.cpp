@@ -9,6 +9,10 @@
 #include <memory>
 #include <string>
 
+#include "rclcpp_components/register_node_macro.hpp"
+#include "robmosys_runtime/main.hpp"
+#include "all_ports/Everything_impl.hpp"
+
 namespace all_ports
 {
 
@@ -436,4 +440,12 @@ bool Everything::fAbove(
   return event.level >= activation.threshold;
 }
 
+int run_Everything(int argc, char * argv[])
+{
+  return robmosys_runtime::run<Everything_impl>(
+    argc, argv, 15, "Everything");
+}
+
 }  // namespace all_ports
+
+RCLCPP_COMPONENTS_REGISTER_NODE(all_ports::Everything_impl)

@@ -3,13 +3,15 @@
 // Do not edit: the next generation replaces this file.
 // Copyright and license: those of the package all_ports (package.xml).
 
-#include "robmosys_runtime/main.hpp"
+namespace all_ports
+{
 
-#include "all_ports/Everything_impl.hpp"
+int run_Everything(int argc, char * argv[]);
+
+}  // namespace all_ports
 
 /// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
-  return robmosys_runtime::run<all_ports::Everything_impl>(
-    argc, argv, 15, "Everything");
+  return all_ports::run_Everything(argc, argv);
 }

@@ -9,6 +9,10 @@
 #include <memory>
 #include <string>
 
+#include "rclcpp_components/register_node_macro.hpp"
+#include "robmosys_runtime/main.hpp"
+#include "cpp_client/Client_impl.hpp"
+
 namespace cpp_client
 {
 
@@ -71,4 +75,12 @@ void Client::fAnswer(const example_msgs::srv::AddTwoInts::Response & commobj)
   RCLCPP_INFO(get_logger(), "callback answer: %s", std::to_string(commobj.sum).c_str());
 }
 
+int run_Client(int argc, char * argv[])
+{
+  return robmosys_runtime::run<Client_impl>(
+    argc, argv, 4, "Client");
+}
+
 }  // namespace cpp_client
+
+RCLCPP_COMPONENTS_REGISTER_NODE(cpp_client::Client_impl)

@@ -3,13 +3,15 @@
 // Do not edit: the next generation replaces this file.
 // Copyright and license: those of the package cpp_client (package.xml).
 
-#include "robmosys_runtime/main.hpp"
+namespace cpp_client
+{
 
-#include "cpp_client/Client_impl.hpp"
+int run_Client(int argc, char * argv[]);
+
+}  // namespace cpp_client
 
 /// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
-  return robmosys_runtime::run<cpp_client::Client_impl>(
-    argc, argv, 4, "Client");
+  return cpp_client::run_Client(argc, argv);
 }

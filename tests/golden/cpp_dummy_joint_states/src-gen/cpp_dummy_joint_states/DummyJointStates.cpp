@@ -9,6 +9,10 @@
 #include <memory>
 #include <string>
 
+#include "rclcpp_components/register_node_macro.hpp"
+#include "robmosys_runtime/main.hpp"
+#include "cpp_dummy_joint_states/DummyJointStates_impl.hpp"
+
 namespace cpp_dummy_joint_states
 {
 
@@ -107,4 +111,12 @@ void DummyJointStates::create_ports()
     });
 }
 
+int run_DummyJointStates(int argc, char * argv[])
+{
+  return robmosys_runtime::run<DummyJointStates_impl>(
+    argc, argv, 2, "DummyJointStates");
+}
+
 }  // namespace cpp_dummy_joint_states
+
+RCLCPP_COMPONENTS_REGISTER_NODE(cpp_dummy_joint_states::DummyJointStates_impl)

@@ -3,13 +3,15 @@
 // Do not edit: the next generation replaces this file.
 // Copyright and license: those of the package cpp_dummy_joint_states (package.xml).
 
-#include "robmosys_runtime/main.hpp"
+namespace cpp_dummy_joint_states
+{
 
-#include "cpp_dummy_joint_states/DummyJointStates_impl.hpp"
+int run_DummyJointStates(int argc, char * argv[]);
+
+}  // namespace cpp_dummy_joint_states
 
 /// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
-  return robmosys_runtime::run<cpp_dummy_joint_states::DummyJointStates_impl>(
-    argc, argv, 2, "DummyJointStates");
+  return cpp_dummy_joint_states::run_DummyJointStates(argc, argv);
 }

@@ -9,6 +9,10 @@
 #include <memory>
 #include <string>
 
+#include "rclcpp_components/register_node_macro.hpp"
+#include "robmosys_runtime/main.hpp"
+#include "cpp_dummy_laser/DummyLaser_impl.hpp"
+
 namespace cpp_dummy_laser
 {
 
@@ -123,4 +127,12 @@ void DummyLaser::create_ports()
     });
 }
 
+int run_DummyLaser(int argc, char * argv[])
+{
+  return robmosys_runtime::run<DummyLaser_impl>(
+    argc, argv, 2, "DummyLaser");
+}
+
 }  // namespace cpp_dummy_laser
+
+RCLCPP_COMPONENTS_REGISTER_NODE(cpp_dummy_laser::DummyLaser_impl)

@@ -3,13 +3,15 @@
 // Do not edit: the next generation replaces this file.
 // Copyright and license: those of the package cpp_dummy_laser (package.xml).
 
-#include "robmosys_runtime/main.hpp"
+namespace cpp_dummy_laser
+{
 
-#include "cpp_dummy_laser/DummyLaser_impl.hpp"
+int run_DummyLaser(int argc, char * argv[]);
+
+}  // namespace cpp_dummy_laser
 
 /// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
-  return robmosys_runtime::run<cpp_dummy_laser::DummyLaser_impl>(
-    argc, argv, 2, "DummyLaser");
+  return cpp_dummy_laser::run_DummyLaser(argc, argv);
 }

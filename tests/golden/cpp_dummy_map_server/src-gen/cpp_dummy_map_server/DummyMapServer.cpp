@@ -9,6 +9,10 @@
 #include <memory>
 #include <string>
 
+#include "rclcpp_components/register_node_macro.hpp"
+#include "robmosys_runtime/main.hpp"
+#include "cpp_dummy_map_server/DummyMapServer_impl.hpp"
+
 namespace cpp_dummy_map_server
 {
 
@@ -140,4 +144,12 @@ void DummyMapServer::create_ports()
     });
 }
 
+int run_DummyMapServer(int argc, char * argv[])
+{
+  return robmosys_runtime::run<DummyMapServer_impl>(
+    argc, argv, 2, "DummyMapServer");
+}
+
 }  // namespace cpp_dummy_map_server
+
+RCLCPP_COMPONENTS_REGISTER_NODE(cpp_dummy_map_server::DummyMapServer_impl)

@@ -3,13 +3,15 @@
 // Do not edit: the next generation replaces this file.
 // Copyright and license: those of the package cpp_dummy_map_server (package.xml).
 
-#include "robmosys_runtime/main.hpp"
+namespace cpp_dummy_map_server
+{
 
-#include "cpp_dummy_map_server/DummyMapServer_impl.hpp"
+int run_DummyMapServer(int argc, char * argv[]);
+
+}  // namespace cpp_dummy_map_server
 
 /// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
-  return robmosys_runtime::run<cpp_dummy_map_server::DummyMapServer_impl>(
-    argc, argv, 2, "DummyMapServer");
+  return cpp_dummy_map_server::run_DummyMapServer(argc, argv);
 }

@@ -9,6 +9,10 @@
 #include <memory>
 #include <string>
 
+#include "rclcpp_components/register_node_macro.hpp"
+#include "robmosys_runtime/main.hpp"
+#include "cpp_level_sensor/LevelSensor_impl.hpp"
+
 namespace cpp_level_sensor
 {
 
@@ -85,4 +89,12 @@ bool LevelSensor::fAbove(
   return event.level >= activation.threshold;
 }
 
+int run_LevelSensor(int argc, char * argv[])
+{
+  return robmosys_runtime::run<LevelSensor_impl>(
+    argc, argv, 3, "LevelSensor");
+}
+
 }  // namespace cpp_level_sensor
+
+RCLCPP_COMPONENTS_REGISTER_NODE(cpp_level_sensor::LevelSensor_impl)

@@ -3,13 +3,15 @@
 // Do not edit: the next generation replaces this file.
 // Copyright and license: those of the package cpp_level_sensor (package.xml).
 
-#include "robmosys_runtime/main.hpp"
+namespace cpp_level_sensor
+{
 
-#include "cpp_level_sensor/LevelSensor_impl.hpp"
+int run_LevelSensor(int argc, char * argv[]);
+
+}  // namespace cpp_level_sensor
 
 /// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
-  return robmosys_runtime::run<cpp_level_sensor::LevelSensor_impl>(
-    argc, argv, 3, "LevelSensor");
+  return cpp_level_sensor::run_LevelSensor(argc, argv);
 }

@@ -9,6 +9,10 @@
 #include <memory>
 #include <string>
 
+#include "rclcpp_components/register_node_macro.hpp"
+#include "robmosys_runtime/main.hpp"
+#include "cpp_level_watcher/LevelWatcher_impl.hpp"
+
 namespace cpp_level_watcher
 {
 
@@ -103,4 +107,12 @@ void LevelWatcher::fOnEvent(const example_msgs::action::LevelAbove::Feedback & c
   RCLCPP_INFO(get_logger(), "event: level %d", commobj.level);
 }
 
+int run_LevelWatcher(int argc, char * argv[])
+{
+  return robmosys_runtime::run<LevelWatcher_impl>(
+    argc, argv, 4, "LevelWatcher");
+}
+
 }  // namespace cpp_level_watcher
+
+RCLCPP_COMPONENTS_REGISTER_NODE(cpp_level_watcher::LevelWatcher_impl)

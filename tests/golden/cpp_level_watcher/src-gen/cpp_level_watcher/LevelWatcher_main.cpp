@@ -3,13 +3,15 @@
 // Do not edit: the next generation replaces this file.
 // Copyright and license: those of the package cpp_level_watcher (package.xml).
 
-#include "robmosys_runtime/main.hpp"
+namespace cpp_level_watcher
+{
 
-#include "cpp_level_watcher/LevelWatcher_impl.hpp"
+int run_LevelWatcher(int argc, char * argv[]);
+
+}  // namespace cpp_level_watcher
 
 /// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
-  return robmosys_runtime::run<cpp_level_watcher::LevelWatcher_impl>(
-    argc, argv, 4, "LevelWatcher");
+  return cpp_level_watcher::run_LevelWatcher(argc, argv);
 }

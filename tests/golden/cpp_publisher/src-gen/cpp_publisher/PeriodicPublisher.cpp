@@ -9,6 +9,9 @@
 #include <memory>
 #include <string>
 
+#include "rclcpp_components/register_node_macro.hpp"
+#include "robmosys_runtime/main.hpp"
+
 namespace cpp_publisher
 {
 
@@ -106,4 +109,12 @@ void PeriodicPublisher::fPublishing()
   pMap->publish(map);
 }
 
+int run_PeriodicPublisher(int argc, char * argv[])
+{
+  return robmosys_runtime::run<PeriodicPublisher>(
+    argc, argv, 2, "PeriodicPublisher");
+}
+
 }  // namespace cpp_publisher
+
+RCLCPP_COMPONENTS_REGISTER_NODE(cpp_publisher::PeriodicPublisher)

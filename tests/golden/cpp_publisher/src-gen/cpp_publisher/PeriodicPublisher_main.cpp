@@ -3,13 +3,15 @@
 // Do not edit: the next generation replaces this file.
 // Copyright and license: those of the package cpp_publisher (package.xml).
 
-#include "robmosys_runtime/main.hpp"
+namespace cpp_publisher
+{
 
-#include "cpp_publisher/PeriodicPublisher.hpp"
+int run_PeriodicPublisher(int argc, char * argv[]);
+
+}  // namespace cpp_publisher
 
 /// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
-  return robmosys_runtime::run<cpp_publisher::PeriodicPublisher>(
-    argc, argv, 2, "PeriodicPublisher");
+  return cpp_publisher::run_PeriodicPublisher(argc, argv);
 }

@@ -8,6 +8,10 @@
 #include <memory>
 #include <string>
 
+#include "rclcpp_components/register_node_macro.hpp"
+#include "robmosys_runtime/main.hpp"
+#include "cpp_receiver/Receiver_impl.hpp"
+
 namespace cpp_receiver
 {
 
@@ -75,4 +79,12 @@ void Receiver::create_ports()
   }
 }
 
+int run_Receiver(int argc, char * argv[])
+{
+  return robmosys_runtime::run<Receiver_impl>(
+    argc, argv, 2, "Receiver");
+}
+
 }  // namespace cpp_receiver
+
+RCLCPP_COMPONENTS_REGISTER_NODE(cpp_receiver::Receiver_impl)

@@ -3,13 +3,15 @@
 // Do not edit: the next generation replaces this file.
 // Copyright and license: those of the package cpp_receiver (package.xml).
 
-#include "robmosys_runtime/main.hpp"
+namespace cpp_receiver
+{
 
-#include "cpp_receiver/Receiver_impl.hpp"
+int run_Receiver(int argc, char * argv[]);
+
+}  // namespace cpp_receiver
 
 /// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
-  return robmosys_runtime::run<cpp_receiver::Receiver_impl>(
-    argc, argv, 2, "Receiver");
+  return cpp_receiver::run_Receiver(argc, argv);
 }

@@ -9,6 +9,9 @@
 #include <memory>
 #include <string>
 
+#include "rclcpp_components/register_node_macro.hpp"
+#include "robmosys_runtime/main.hpp"
+
 namespace cpp_sender
 {
 
@@ -128,4 +131,12 @@ void Sender::fSending()
   sMap->publish(map);
 }
 
+int run_Sender(int argc, char * argv[])
+{
+  return robmosys_runtime::run<Sender>(
+    argc, argv, 2, "Sender");
+}
+
 }  // namespace cpp_sender
+
+RCLCPP_COMPONENTS_REGISTER_NODE(cpp_sender::Sender)

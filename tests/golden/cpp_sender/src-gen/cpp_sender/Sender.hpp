@@ -68,4 +68,8 @@ private:
   Parameters params_;
 };
 
+/// Spin Sender on a multi-threaded executor (at least 2 threads) until
+/// SIGINT or SIGTERM: the process of the component (its executable Sender).
+int run_Sender(int argc, char * argv[]);
+
 }  // namespace cpp_sender

@@ -3,13 +3,15 @@
 // Do not edit: the next generation replaces this file.
 // Copyright and license: those of the package cpp_sender (package.xml).
 
-#include "robmosys_runtime/main.hpp"
+namespace cpp_sender
+{
 
-#include "cpp_sender/Sender.hpp"
+int run_Sender(int argc, char * argv[]);
+
+}  // namespace cpp_sender
 
 /// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
-  return robmosys_runtime::run<cpp_sender::Sender>(
-    argc, argv, 2, "Sender");
+  return cpp_sender::run_Sender(argc, argv);
 }

@@ -8,6 +8,10 @@
 #include <memory>
 #include <string>
 
+#include "rclcpp_components/register_node_macro.hpp"
+#include "robmosys_runtime/main.hpp"
+#include "cpp_server/Server_impl.hpp"
+
 namespace cpp_server
 {
 
@@ -56,4 +60,12 @@ void Server::create_ports()
       }));
 }
 
+int run_Server(int argc, char * argv[])
+{
+  return robmosys_runtime::run<Server_impl>(
+    argc, argv, 2, "Server");
+}
+
 }  // namespace cpp_server
+
+RCLCPP_COMPONENTS_REGISTER_NODE(cpp_server::Server_impl)

@@ -3,13 +3,15 @@
 // Do not edit: the next generation replaces this file.
 // Copyright and license: those of the package cpp_server (package.xml).
 
-#include "robmosys_runtime/main.hpp"
+namespace cpp_server
+{
 
-#include "cpp_server/Server_impl.hpp"
+int run_Server(int argc, char * argv[]);
+
+}  // namespace cpp_server
 
 /// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
-  return robmosys_runtime::run<cpp_server::Server_impl>(
-    argc, argv, 2, "Server");
+  return cpp_server::run_Server(argc, argv);
 }

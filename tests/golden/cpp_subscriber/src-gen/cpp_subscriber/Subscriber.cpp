@@ -8,6 +8,10 @@
 #include <memory>
 #include <string>
 
+#include "rclcpp_components/register_node_macro.hpp"
+#include "robmosys_runtime/main.hpp"
+#include "cpp_subscriber/Subscriber_impl.hpp"
+
 namespace cpp_subscriber
 {
 
@@ -75,4 +79,12 @@ void Subscriber::create_ports()
   }
 }
 
+int run_Subscriber(int argc, char * argv[])
+{
+  return robmosys_runtime::run<Subscriber_impl>(
+    argc, argv, 2, "Subscriber");
+}
+
 }  // namespace cpp_subscriber
+
+RCLCPP_COMPONENTS_REGISTER_NODE(cpp_subscriber::Subscriber_impl)

@@ -3,13 +3,15 @@
 // Do not edit: the next generation replaces this file.
 // Copyright and license: those of the package cpp_subscriber (package.xml).
 
-#include "robmosys_runtime/main.hpp"
+namespace cpp_subscriber
+{
 
-#include "cpp_subscriber/Subscriber_impl.hpp"
+int run_Subscriber(int argc, char * argv[]);
+
+}  // namespace cpp_subscriber
 
 /// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
-  return robmosys_runtime::run<cpp_subscriber::Subscriber_impl>(
-    argc, argv, 2, "Subscriber");
+  return cpp_subscriber::run_Subscriber(argc, argv);
 }
