@@ -77,8 +77,10 @@ public:
   /// Stop spinning, before the nodes and ports of a test go.
   void stop()
   {
-    executor_->cancel();
     if (spinner_.joinable()) {
+      // a cancel() before spin() has begun is lost, and spin() would never end
+      wait_until([this]() {return executor_->is_spinning();}, 10s);
+      executor_->cancel();
       spinner_.join();
     }
   }
