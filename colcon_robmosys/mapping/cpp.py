@@ -71,9 +71,11 @@ RETURN_TYPES = {
     Returns.RESULT: '{type}::Result', Returns.CONDITION: 'bool',
 }
 
-#: entity -> the header of robmosys_runtime its member type needs
+#: entity -> the header of robmosys_runtime its port needs (its member type, or
+#: create_action_server, whose rclcpp_action headers other components skip)
 RUNTIME_HEADERS = {
     Entity.CLIENT: 'robmosys_runtime/query_client.hpp',
+    Entity.ACTION_SERVER: 'robmosys_runtime/action_server.hpp',
     Entity.ACTION_CLIENT: 'robmosys_runtime/action_client.hpp',
     Entity.EVENT_SERVER: 'robmosys_runtime/event_server.hpp',
     Entity.EVENT_CLIENT: 'robmosys_runtime/event_client.hpp',

@@ -18,6 +18,7 @@
 #include "test_msgs/srv/basic_types.hpp"
 
 #include "robmosys_runtime/action_client.hpp"
+#include "robmosys_runtime/action_server.hpp"
 #include "robmosys_runtime/component_node.hpp"
 #include "robmosys_runtime/event_client.hpp"
 #include "robmosys_runtime/event_server.hpp"

@@ -21,9 +21,19 @@
 #include <vector>
 
 #include "rclcpp/rclcpp.hpp"
-#include "rclcpp_action/rclcpp_action.hpp"
 #include "rclcpp_lifecycle/lifecycle_node.hpp"
 #include "rclcpp_lifecycle/managed_entity.hpp"
+
+// declared only: action_server.hpp, which a component with an action server
+// includes, defines ComponentNode::create_action_server with rclcpp_action's
+// headers, so that every other component compiles without them
+namespace rclcpp_action
+{
+template<typename ActionT>
+class Server;
+template<typename ActionT>
+class ServerGoalHandle;
+}  // namespace rclcpp_action
 
 namespace robmosys_runtime
 {
@@ -218,55 +228,14 @@ protected:
   /**
    * Each goal runs in a thread of its own (executing may take long, the
    * server keeps answering), one goal of the port at a time; goals are
-   * accepted while the node is active, and waited for on release.
+   * accepted while the node is active, and waited for on release. Defined in
+   * robmosys_runtime/action_server.hpp.
    */
   template<typename ActionT>
-  typename rclcpp_action::Server<ActionT>::SharedPtr create_action_server(
+  std::shared_ptr<rclcpp_action::Server<ActionT>> create_action_server(
     const std::string & name, const std::string & activity,
     std::function<typename ActionT::Result(
-      const std::shared_ptr<rclcpp_action::ServerGoalHandle<ActionT>>)> execute)
-  {
-    using GoalHandle = rclcpp_action::ServerGoalHandle<ActionT>;
-    auto serial = std::make_shared<std::mutex>();
-    auto run = [this, activity, execute, serial](const std::shared_ptr<GoalHandle> goal_handle) {
-        std::lock_guard<std::mutex> lock(*serial);
-        auto result = std::make_shared<typename ActionT::Result>();
-        try {
-          *result = execute(goal_handle);
-        } catch (const std::exception & error) {
-          activity_failed(activity, error.what());
-          goal_handle->abort(result);
-          return;
-        }
-        if (goal_handle->is_canceling()) {
-          goal_handle->canceled(result);
-        } else {
-          goal_handle->succeed(result);
-        }
-      };
-    return rclcpp_action::create_server<ActionT>(
-      this, name,
-      [this, name](const rclcpp_action::GoalUUID &, std::shared_ptr<const typename ActionT::Goal>) {
-        if (!is_active()) {
-          RCLCPP_WARN(get_logger(), "goal on the port %s rejected: the node is inactive",
-          name.c_str());
-          return rclcpp_action::GoalResponse::REJECT;
-        }
-        return rclcpp_action::GoalResponse::ACCEPT_AND_EXECUTE;
-      },
-      [](const std::shared_ptr<GoalHandle>) {
-        return rclcpp_action::CancelResponse::ACCEPT;
-      },
-      [this, run](const std::shared_ptr<GoalHandle> goal_handle) {
-        std::lock_guard<std::mutex> lock(goals_mutex_);
-        goals_.erase(
-          std::remove_if(
-            goals_.begin(), goals_.end(), [](const std::future<void> & goal) {
-              return goal.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
-            }), goals_.end());
-        goals_.push_back(std::async(std::launch::async, run, goal_handle));
-      }, rcl_action_server_get_default_options(), activities_.at(activity));
-  }
+      const std::shared_ptr<rclcpp_action::ServerGoalHandle<ActionT>>)> execute);
 
   CallbackReturn on_configure(const rclcpp_lifecycle::State &) override
   {

@@ -19,6 +19,7 @@
 #include "all_ports_msgs/srv/twice.hpp"
 #include "robmosys_runtime/component_node.hpp"
 #include "robmosys_runtime/action_client.hpp"
+#include "robmosys_runtime/action_server.hpp"
 #include "robmosys_runtime/event_client.hpp"
 #include "robmosys_runtime/event_server.hpp"
 #include "robmosys_runtime/query_client.hpp"
