@@ -22,6 +22,7 @@ sys.path.insert(0, str(BENCH))
 
 import bench_bringup  # noqa: E402
 import bench_colcon  # noqa: E402
+import bench_cppbuild  # noqa: E402
 import bench_generation  # noqa: E402
 import bench_runtime  # noqa: E402
 from colcon_robmosys.check import find_model_files, load_workspace  # noqa: E402
@@ -146,3 +147,39 @@ def test_cpp_pairs_are_written_to_match(tmp_path):
     cmds = bench_runtime.commands('hand-written C++', tmp_path / 'install', 1, 0.1)
     assert cmds['talker'][:2] == [str(tmp_path / 'install' / 'bench_handwritten_cpp' / 'lib' /
                                       'bench_handwritten_cpp' / 'pubsub'), 'talker']
+
+
+def test_cppbuild_sides_are_written_to_match(tmp_path):
+    """Both sides of the build benchmark have the same two nodes, one package each."""
+    bench_cppbuild.write_generated(tmp_path / 'gen')
+    bench_cppbuild.write_handwritten(tmp_path / 'hand')
+    result = load_workspace(find_model_files([tmp_path / 'gen']),
+                            InterfaceIndex([Path(sys.prefix)]))
+    result.raise_errors()
+    assert sorted(p.name for p in (tmp_path / 'gen').iterdir()) == [
+        'bench_listener_cpp', 'bench_talker_cpp']
+    for package, (source, cls) in bench_cppbuild.HAND.items():
+        root = tmp_path / 'hand' / package
+        assert parse_package(root).name == package
+        # the executable comes from the library that registers the node
+        registered = re.search(r'RCLCPP_COMPONENTS_REGISTER_NODE\((\S+)\)',
+                               (root / 'src' / source).read_text())
+        assert registered and registered.group(1) == f'bench_handwritten::{cls}'
+        cmake = (root / 'CMakeLists.txt').read_text()
+        assert f'PLUGIN "{registered.group(1)}"\n  EXECUTABLE {cls}\n' in cmake
+        assert f'class {cls} : public rclcpp_lifecycle::LifecycleNode' in (
+            root / 'src' / 'pubsub_nodes.hpp').read_text()
+
+
+@pytest.mark.integration
+def test_cppbuild_benchmark_prints_ratios_or_why_not(capsys):
+    """With rclcpp, one clean build of each side and the ratios; without, the reason."""
+    assert bench_cppbuild.main(['--rounds', '1']) == 0
+    out = capsys.readouterr().out
+    if bench_runtime.cpp_skip_reason() is not None:
+        assert 'C++: skipped: rclcpp' in out
+        return
+    assert re.search(r'round 1, generated: clean colcon build in \d+\.\d s \(\d+\.\d s of CPU',
+                     out), out
+    assert len(re.findall(rf'^\| (clean colcon build|CPU of that build|lines of C\+\+).* '
+                          rf'{RATIO} +\|', out, re.MULTILINE)) == 3, out
