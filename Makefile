@@ -6,8 +6,8 @@
 #   make demo   run tools/demo.py
 #   make clean  remove the venv and the test workspace's build results
 #   make bench  run the five benchmarks of bench/ (or one: make bench-generation,
-#               bench-colcon, bench-runtime, bench-bringup, bench-cppbuild; BENCH_ARGS='--help' shows
-#               their options)
+#               bench-colcon, bench-runtime, bench-bringup, bench-cppbuild;
+#               BENCH_ARGS='--help' shows their options)
 
 PYTHON ?= python3
 PYTEST_ARGS ?=
