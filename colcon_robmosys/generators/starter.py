@@ -18,7 +18,8 @@ from colcon_robmosys.generators.filters import yaml_value
 from colcon_robmosys.generators.render import render
 from colcon_robmosys.model.names import identifier_problem, package_problem
 from colcon_robmosys.model.schema import schema
-from colcon_robmosys.model.types import Component, Language, Pattern, Port, Role
+from colcon_robmosys.model.types import (
+    Component, Language, Maintainer, Pattern, Port, Role)
 
 __all__ = ['class_name', 'KINDS', 'Maintainer', 'name_problems', 'render_starter',
            'starter_component', 'starter_system', 'StarterComponent', 'StarterDefinition',
@@ -33,14 +34,6 @@ STARTER_MESSAGE = 'Sample'
 STARTER_TEXT_FIELD = 'text'
 #: what a starting component exchanges without a service definition of its own
 DEFAULT_TYPE = ('std_msgs', 'String', 'data')
-
-
-@dataclass(frozen=True)
-class Maintainer:
-    """A maintainer of the package a starting model becomes."""
-
-    name: str
-    email: str
 
 
 @dataclass(frozen=True)
