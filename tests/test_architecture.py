@@ -17,8 +17,9 @@ REPO = Path(__file__).resolve().parent.parent
 PACKAGE = REPO / 'colcon_robmosys'
 
 #: The layers, lowest first: each imports only from those before it.
-#: errors.py is the one module every layer shares.
-LAYERS = ('errors', 'model', 'mapping', 'check', 'generators', 'importer')
+#: errors.py is the one module every layer shares; report/ writes its
+#: diagnostics in the formats of CI tools.
+LAYERS = ('errors', 'report', 'model', 'mapping', 'check', 'generators', 'importer')
 #: The colcon glue, on top; the only importers of colcon_core.
 GLUE = ('package_identification', 'package_discovery', 'package_selection', 'task', 'verb')
 #: Tools for developers (tests, benchmarks, the demo): above everything,

@@ -42,6 +42,7 @@ def test_mypy_strict_on_the_core():
     result = subprocess.run(
         [sys.executable, '-m', 'mypy', '--config-file', str(REPO / 'setup.cfg'),
          '--cache-dir', os.devnull, '--strict', '-p', 'colcon_robmosys.model',
-         '-p', 'colcon_robmosys.check', '-p', 'colcon_robmosys.mapping'],
+         '-p', 'colcon_robmosys.check', '-p', 'colcon_robmosys.mapping',
+         '-p', 'colcon_robmosys.report'],
         cwd=REPO, capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stdout + result.stderr

@@ -1,6 +1,7 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
+import argparse
 import os
 from pathlib import Path
 
@@ -18,11 +19,17 @@ from colcon_robmosys.generators import plan_package
 from colcon_robmosys.generators import StampStore
 from colcon_robmosys.generators import unchanged_package
 from colcon_robmosys.package_discovery.robmosys import checked_result
+from colcon_robmosys.report import report_problem
+from colcon_robmosys.report import ReportRequest
+from colcon_robmosys.report import write_report
 
 logger = colcon_logger.getChild(__name__)
 
 #: The folder, inside the package's build folder, of the generated sources.
 GENERATED_DIR = 'src-gen'
+#: The JUnit report of a package's model, where ament puts the results of its
+#: tests (in build/<package>/): `colcon test-result` collects it with them.
+TEST_RESULT = Path('test_results') / '{package}' / 'robmosys_model.xml'
 
 
 class RobmosysBuildTask(TaskExtensionPoint):
@@ -32,11 +39,26 @@ class RobmosysBuildTask(TaskExtensionPoint):
         super().__init__()
         satisfies_version(TaskExtensionPoint.EXTENSION_POINT_VERSION, '^1.0')
 
+    def add_arguments(self, *, parser):  # noqa: D102
+        try:
+            parser.add_argument(
+                '--robmosys-test-results', action='store_true',
+                help='Write the diagnostics of the model of each RobMoSys '
+                'package, warnings included, as JUnit XML to build/<package>/'
+                f"{TEST_RESULT.as_posix().format(package='<package>')}, where "
+                "'colcon test-result' collects them, even for a package whose "
+                'model has errors')
+        except argparse.ArgumentError:
+            # the four package types share this task: the first adds it
+            pass
+
     async def build(self):  # noqa: D102
         pkg, args = self.context.pkg, self.context.args
         result = checked_result(pkg)
         model_file = pkg.metadata['robmosys_model_file']
         errors = result.errors_of(model_file)
+        _test_result(args, pkg.name, model_file,
+                     errors + result.warnings_of(pkg.name))
         if errors or model_file in result.broken_files:
             # discovery has printed them; this package's failure in colcon's
             # summary says what it holds back
@@ -82,3 +104,21 @@ class RobmosysBuildTask(TaskExtensionPoint):
         extension = AmentCmakeBuildTask()
         extension.set_context(context=self.context)
         return await extension.build()
+
+
+def _test_result(args, package, model_file, diagnostics):
+    """Write the JUnit report of a package's model, or remove the last one.
+
+    A report left by an earlier build asked for it would tell what is no
+    longer true; only a report of ours is removed.
+    """
+    path = Path(args.build_base) / str(TEST_RESULT).format(package=package)
+    if not getattr(args, 'robmosys_test_results', False):
+        if path.is_file() and report_problem(path) is None:
+            path.unlink()
+        return
+    problem = report_problem(path)
+    if problem:
+        logger.warning(problem)
+        return
+    write_report(ReportRequest('junit', path), [model_file], diagnostics)

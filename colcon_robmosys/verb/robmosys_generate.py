@@ -18,9 +18,13 @@ from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
 from colcon_robmosys.generators import write_tree
 from colcon_robmosys.package_discovery.robmosys import checked_result
+from colcon_robmosys.report import report_problem
+from colcon_robmosys.report import write_report
 from colcon_robmosys.runtime import installed_runtime
 from colcon_robmosys.runtime import RUNTIME_PACKAGE
 from colcon_robmosys.runtime import runtime_source
+from colcon_robmosys.verb import add_diagnostics_arguments
+from colcon_robmosys.verb import diagnostics_request
 from colcon_robmosys.verb import display_path
 
 
@@ -50,10 +54,28 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
         what.add_argument(
             '--validate-only', action='store_true',
             help='Check the models and write nothing; exit non-zero on errors')
+        add_diagnostics_arguments(parser)
         add_packages_arguments(parser)
 
     def main(self, *, context):  # noqa: D102
         args = context.args
+        request = diagnostics_request(args)
+        if request is not None and report_problem(request.path):
+            print(report_problem(request.path), file=sys.stderr)
+            return 1
+        # what the run checked and found, for the report
+        files, found = set(), []
+        status = self._generate(args, files, found)
+        if request is not None:
+            try:
+                write_report(request, files, found)
+            except OSError as error:
+                print(f'{display_path(request.path)}: error: cannot write the '
+                      f'report: {error.strerror}', file=sys.stderr)
+                return 1
+        return status
+
+    def _generate(self, args, files, found):
         decorators = get_packages(args)
         selected = [
             d.descriptor for d in decorators
@@ -62,11 +84,13 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
             print('No RobMoSys model selected', file=sys.stderr)
             return 0
         result = checked_result(selected[0])
-        print_diagnostics(
-            w for d in selected for w in result.warnings_of(d.name))
+        warnings = [w for d in selected for w in result.warnings_of(d.name)]
+        print_diagnostics(warnings)
         model_files = {d.metadata['robmosys_model_file'] for d in selected}
         errors = [e for e in result.errors
                   if e.location.path in model_files]
+        files.update(model_files)
+        found += warnings + errors
         broken = model_files & result.broken_files.keys()
         if errors or broken:
             # discovery has printed every error already; a second
@@ -114,6 +138,7 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
                 uses_runtime = uses_runtime or RUNTIME_PACKAGE in plan.depends
             except RobmosysError as error:
                 print_diagnostics(error.diagnostics)
+                found += error.diagnostics
                 status = 1
         provider = installed_runtime(
             ignored=[Path(getattr(args, 'install_base', None) or 'install')])
@@ -128,6 +153,7 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
                 report = write_tree(_runtime_files(), out)
             except RobmosysError as error:
                 print_diagnostics(error.diagnostics)
+                found += error.diagnostics
                 return 1
             print(f'exported {RUNTIME_PACKAGE} in {display_path(out)}: '
                   f'{len(report.written)} written, '

@@ -3,7 +3,6 @@
 
 import os
 from pathlib import Path
-import re
 import sys
 
 from colcon_core.plugin_system import satisfies_version
@@ -17,9 +16,7 @@ from colcon_robmosys.importer.interfaces import import_interfaces
 from colcon_robmosys.importer.running import import_running_system
 from colcon_robmosys.model.names import package_problem
 from colcon_robmosys.verb import display_path
-
-#: a maintainer as package.xml shows one
-MAINTAINER = re.compile(r'\s*(.+?)\s*<([^<>@\s]+@[^<>\s]+)>\s*')
+from colcon_robmosys.verb import MAINTAINER
 
 
 class RobmosysImportVerb(VerbExtensionPoint):
