@@ -32,10 +32,11 @@ typename union unsigned using virtual void volatile wchar_t while xor xor_eq
 final override import module NULL
 """.split())
 
-#: Python's keywords, soft ones included. Written out, not read from the
-#: running Python's keyword module: its soft keywords grow ('type' since 3.12),
-#: and a model, like the JSON Schema, must mean the same on every Python.
-PYTHON_KEYWORDS = frozenset(keyword.kwlist) | frozenset({'_', 'case', 'match', 'type'})
+#: Python's keywords. Not its soft keywords (match, case, type, _): they are
+#: identifiers Python accepts anywhere (sensor_msgs/JoyFeedback has a field
+#: 'type'), and their list grows with Python ('type' since 3.12), while a
+#: model, like the JSON Schema, must mean the same on every Python.
+PYTHON_KEYWORDS = frozenset(keyword.kwlist)
 
 #: Members of rclpy's and rclcpp_lifecycle's LifecycleNode, of robmosys_runtime's
 #: ComponentNode (both languages), and names the generated classes use: a
