@@ -4,8 +4,10 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 import shutil
+import sys
 
 import pytest
 
@@ -112,9 +114,20 @@ def test_validate_only_reports_every_error_and_fails(workspace):
     result = colcon(['robmosys-generate', '--validate-only'], cwd=workspace)
     assert result.returncode != 0
     output = result.stdout + result.stderr
-    assert f"{model}:13:18: error: 'pattern' is 'pull', which is not one of: " \
+    assert f"{model}:13:18: error: port 'pMap': 'pattern' is 'pull', which is not one of: " \
         'push, send, query, event, action' in output
     assert files_of(workspace / 'src') == before
+
+
+def test_print_schema_path_names_the_installed_schema(tmp_path):
+    """Editors are pointed at the schema colcon-robmosys checks with, offline."""
+    result = colcon(['robmosys-generate', '--print-schema-path'], cwd=tmp_path)
+    assert result.returncode == 0
+    path = Path(result.stdout.strip())
+    # the file of the installed package, which outlives a checkout
+    assert Path(sys.prefix) in path.parents
+    source = TEST_WORKSPACE.parent / 'colcon_robmosys' / 'model' / path.name
+    assert json.loads(path.read_text()) == json.loads(source.read_text())
 
 
 def test_generate_creates_missing_implementation_only(workspace):

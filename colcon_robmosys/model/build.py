@@ -42,16 +42,11 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
         info = self._info(path, raw, defaults, 'system')
         name = raw.get('name') or _camel(info.name)
         if 'name' in raw:
-            self.check_identifier(path + ('name',), 'system name', name)
+            self.check_name(path + ('name',), 'system', name, key=False)
         instances = []
         for iname, body in raw.get('instances', {}).items():
             ipath = path + ('instances', iname)
-            self.check_identifier(ipath, 'instance name', iname)
-            if iname == 'nodes':
-                # <system>.nodes.launch.py starts every instance
-                self.error(ipath, "instance name 'nodes' is reserved: "
-                           '<system>.nodes.launch.py is the launch file of '
-                           'every instance', key=True)
+            self.check_name(ipath, 'instance', iname)
             namespace = body.get('namespace', '')
             if namespace and not namespace.startswith('/'):
                 namespace = '/' + namespace
@@ -74,7 +69,7 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
         subsystems = []
         for sname, body in raw.get('subsystems', {}).items():
             spath = path + ('subsystems', sname)
-            self.check_identifier(spath, 'subsystem name', sname)
+            self.check_name(spath, 'subsystem', sname)
             if sname in raw.get('instances', {}):
                 self.error(spath, f"subsystem '{sname}' has the name of an instance",
                            key=True)

@@ -39,20 +39,19 @@ class BuilderBase:
         """Return the location of a node."""
         return self.loaded.location(path, key=key)
 
-    def check_identifier(self, path: NodePath, what: str, name: str) -> None:
-        """Report a name that is not a usable identifier."""
-        problem = names.identifier_problem(name)
+    def check_name(self, path: NodePath, kind: str, name: str, *,
+                   key: bool = True) -> None:
+        """Report a name that its kind cannot have (see names.name_problem)."""
+        problem = names.name_problem(kind, name)
         if problem:
-            self.error(path, f"{what} '{name}' {problem}", key=True)
+            self.error(path, problem, key=key)
 
     # package metadata ---------------------------------------------------
 
     def _info(self, path: NodePath, raw: RawData, defaults: RawData,
               kind: str) -> PackageInfo:
         name = raw['package']
-        problem = names.package_problem(name)
-        if problem:
-            self.error(path + ('package',), f"package '{name}' {problem}")
+        self.check_name(path + ('package',), 'package', name, key=False)
         maintainers = raw.get('maintainers', defaults.get('maintainers'))
         license_ = raw.get('license', defaults.get('license'))
         if not maintainers:

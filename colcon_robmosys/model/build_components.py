@@ -9,7 +9,6 @@ import ast
 import textwrap
 
 from colcon_robmosys.errors import Diagnostic, Location
-from colcon_robmosys.model import names
 from colcon_robmosys.model.build_base import BuilderBase, choices
 from colcon_robmosys.model.fieldtypes import parse_interface, TypeNameError
 from colcon_robmosys.model.loader import NodePath, RawData
@@ -27,7 +26,7 @@ class ComponentBuilder(BuilderBase):
                    defaults: RawData) -> Component:
         info = self._info(path, raw, defaults, 'component')
         name = raw['name']
-        self.check_identifier(path + ('name',), 'component name', name)
+        self.check_name(path + ('name',), 'component', name, key=False)
         language = Language(raw['language'])
         ports = tuple(self._port(path + ('ports', n), n, body)
                       for n, body in raw.get('ports', {}).items())
@@ -46,7 +45,7 @@ class ComponentBuilder(BuilderBase):
         activities = []
         for aname, body in raw.get('activities', {}).items():
             apath = path + ('activities', aname)
-            self.check_identifier(apath, 'activity name', aname)
+            self.check_name(apath, 'activity', aname)
             period, trigger = body.get('period'), body.get('trigger')
             if (period is None) == (trigger is None):
                 which = 'not both' if period is not None else 'has neither'
@@ -105,11 +104,11 @@ class ComponentBuilder(BuilderBase):
                                key=True)
                 owners.setdefault(item.name, section[:-1].replace('ie', 'y'))
         for parameter in parameters:
-            self.check_identifier(path + ('parameters', parameter.name),
-                                  'parameter name', parameter.name)
+            self.check_name(path + ('parameters', parameter.name),
+                            'parameter', parameter.name)
 
     def _port(self, path: NodePath, name: str, raw: RawData) -> Port:
-        self.check_identifier(path, 'port name', name)
+        self.check_name(path, 'port', name)
         pattern, role = Pattern(raw['pattern']), Role(raw['role'])
         kind = PATTERN_INTERFACE[pattern]
         try:
@@ -129,10 +128,7 @@ class ComponentBuilder(BuilderBase):
 
     def _function(self, path: NodePath, name: str, raw: RawData | None,
                   language: Language) -> Function:
-        self.check_identifier(path, 'function name', name)
-        if name in names.NODE_MEMBERS:
-            self.error(path, f"function name '{name}' would hide a member of "
-                       'the lifecycle node class', key=True)
+        self.check_name(path, 'function', name)
         raw = raw or {}
         code = raw.get('code')
         if code is not None and language is Language.PYTHON:

@@ -5,7 +5,6 @@
 
 from __future__ import annotations
 
-from colcon_robmosys.model import names
 from colcon_robmosys.model.build_base import BuilderBase
 from colcon_robmosys.model.fieldtypes import (
     interface_comment_problem, parse_field_type, TypeNameError, value_problem)
@@ -25,11 +24,7 @@ class DefinitionBuilder(BuilderBase):
         seen: dict[str, str] = {}
 
         def named(section: str, name: str) -> None:
-            if not names.INTERFACE_TYPE_RE.match(name):
-                self.error(path + (section, name),
-                           f"'{name}' is not a valid interface name: "
-                           'CamelCase, starting with a capital letter',
-                           key=True)
+            self.check_name(path + (section, name), 'interface', name)
             if name in seen:
                 self.error(path + (section, name),
                            f"'{name}' is already defined in {seen[name]}",
@@ -111,13 +106,7 @@ class DefinitionBuilder(BuilderBase):
         fields = []
         for name, spec in raw.get('fields', {}).items():
             fpath = path + ('fields', name)
-            if not names.FIELD_RE.match(name):
-                self.error(fpath, f"field '{name}' is not a valid field name: "
-                           'lower case letters, digits and single '
-                           'underscores, starting with a letter', key=True)
-            elif name in names.CPP_KEYWORDS or name in names.PYTHON_KEYWORDS:
-                self.error(fpath, f"field '{name}' is a C++ or Python keyword",
-                           key=True)
+            self.check_name(fpath, 'field', name)
             if isinstance(spec, str):
                 spec = {'type': spec}
                 tpath = fpath
@@ -140,10 +129,7 @@ class DefinitionBuilder(BuilderBase):
         constants = []
         for name, spec in raw.get('constants', {}).items():
             cpath = path + ('constants', name)
-            if not names.CONSTANT_RE.match(name):
-                self.error(cpath, f"constant '{name}' is not a valid constant "
-                           'name: upper case letters, digits and single '
-                           'underscores, starting with a letter', key=True)
+            self.check_name(cpath, 'constant', name)
             field_type = self._field_type(cpath + ('type',), spec['type'],
                                           package, f"constant '{name}'")
             if field_type is None:

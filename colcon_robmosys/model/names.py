@@ -32,7 +32,11 @@ typename union unsigned using virtual void volatile wchar_t while xor xor_eq
 final override import module NULL
 """.split())
 
-PYTHON_KEYWORDS = frozenset(keyword.kwlist) | frozenset(keyword.softkwlist)
+#: Python's keywords. Not its soft keywords (match, case, type, _): they are
+#: identifiers Python accepts anywhere (sensor_msgs/JoyFeedback has a field
+#: 'type'), and their list grows with Python ('type' since 3.12), while a
+#: model, like the JSON Schema, must mean the same on every Python.
+PYTHON_KEYWORDS = frozenset(keyword.kwlist)
 
 #: Members of rclpy's and rclcpp_lifecycle's LifecycleNode, of robmosys_runtime's
 #: ComponentNode (both languages), and names the generated classes use: a
@@ -118,6 +122,57 @@ def _characters(characters: list[str]) -> str:
     shown = ', '.join(repr(c) if c.isprintable() else ascii(c)
                       for c in characters)
     return f"the character{'s' if len(characters) > 1 else ''} {shown}"
+
+
+def shown(name: str) -> str:
+    """Quote a name for a message; an invisible character is shown escaped."""
+    return f"'{name}'" if name.isprintable() else repr(name)
+
+
+#: Names that are identifiers (members, classes, nodes): kind -> what it is called
+IDENTIFIER_KINDS = {
+    'component': 'component name', 'system': 'system name', 'port': 'port name',
+    'activity': 'activity name', 'function': 'function name',
+    'parameter': 'parameter name', 'instance': 'instance name',
+    'subsystem': 'subsystem name',
+}
+
+
+def name_problem(kind: str, name: str) -> str | None:
+    """Return the message about a name of a kind of the model, or None if it is valid.
+
+    :param kind: 'package', 'interface', 'field', 'constant' or a key of
+        :data:`IDENTIFIER_KINDS`
+    """
+    if kind == 'package':
+        problem = package_problem(name)
+        return f'package {shown(name)} {problem}' if problem else None
+    if kind == 'interface':
+        return None if INTERFACE_TYPE_RE.match(name) else (
+            f'{shown(name)} is not a valid interface name: CamelCase, '
+            'starting with a capital letter')
+    if kind == 'field':
+        if not FIELD_RE.match(name):
+            return (f'field {shown(name)} is not a valid field name: lower case '
+                    'letters, digits and single underscores, starting with a letter')
+        if name in CPP_KEYWORDS or name in PYTHON_KEYWORDS:
+            return f'field {shown(name)} is a C++ or Python keyword'
+        return None
+    if kind == 'constant':
+        return None if CONSTANT_RE.match(name) else (
+            f'constant {shown(name)} is not a valid constant name: upper case '
+            'letters, digits and single underscores, starting with a letter')
+    what = IDENTIFIER_KINDS[kind]
+    problem = identifier_problem(name)
+    if problem:
+        return f'{what} {shown(name)} {problem}'
+    if kind == 'function' and name in NODE_MEMBERS:
+        return (f'function name {shown(name)} would hide a member of the '
+                'lifecycle node class')
+    if kind == 'instance' and name == 'nodes':
+        return ("instance name 'nodes' is reserved: <system>.nodes.launch.py "
+                'is the launch file of every instance')
+    return None
 
 
 def package_problem(name: str) -> str | None:

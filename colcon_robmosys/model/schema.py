@@ -8,6 +8,7 @@ from __future__ import annotations
 from functools import lru_cache
 from importlib import resources
 import json
+from pathlib import Path
 import re
 from typing import Any, Callable, Iterator
 
@@ -16,26 +17,23 @@ from jsonschema.exceptions import ValidationError
 from jsonschema.validators import extend
 
 from colcon_robmosys.errors import Diagnostic
-from colcon_robmosys.model import names
+from colcon_robmosys.model import schema_messages
 from colcon_robmosys.model.loader import LoadedFile, NodePath
 
-#: The schema's pattern of names that become C++ and Python identifiers.
-IDENTIFIER_PATTERN = '^[A-Za-z][A-Za-z0-9_]*$'
+#: The schema's file, named as its $id ends: the version is that of the
+#: format (robmosys: 1), see docs/model-format.md, "Editor support"
+SCHEMA_FILE = 'robmosys-1.schema.json'
 
-SCHEMA_FILE = 'robmosys.schema.json'
 
-_KIND_NAMES = {
-    'object': 'a mapping', 'array': 'a list', 'string': 'a string',
-    'integer': 'an integer', 'number': 'a number', 'boolean': 'true or false',
-    'null': 'nothing',
-}
+def schema_path() -> Path:
+    """Return the path of the installed JSON Schema file (for editors)."""
+    return Path(str(resources.files('colcon_robmosys.model').joinpath(SCHEMA_FILE)))
 
 
 @lru_cache(maxsize=1)
 def schema() -> dict[str, Any]:
     """Return the JSON Schema of robmosys.yaml files."""
-    text = resources.files('colcon_robmosys.model').joinpath(
-        SCHEMA_FILE).read_text(encoding='utf-8')
+    text = schema_path().read_text(encoding='utf-8')
     loaded: dict[str, Any] = json.loads(text)
     return loaded
 
@@ -95,96 +93,11 @@ def is_valid(data: Any) -> bool:
     return True
 
 
-def _describe(value: Any) -> str:
-    if isinstance(value, bool):
-        return 'true' if value else 'false'
-    if value is None:
-        return 'nothing'
-    if isinstance(value, dict):
-        return 'a mapping'
-    if isinstance(value, list):
-        return 'a list'
-    if isinstance(value, str):
-        # a newline or another invisible character is shown escaped
-        return f"'{value}'" if value.isprintable() else repr(value)
-    return repr(value)
-
-
-def _subject(path: tuple[Any, ...]) -> str:
-    for depth in range(len(path) - 1, -1, -1):
-        if isinstance(path[depth], str):
-            if depth < len(path) - 1:
-                return f"item {path[depth + 1] + 1} of '{path[depth]}'"
-            return f"'{path[depth]}'"
-    return 'the model'
-
-
-def _pattern_hint(schema_: dict[str, Any]) -> str:
-    """Say what a string must look like, as the schema explains it."""
-    # patternErrorMessage is what VS Code and yaml-language-server show
-    text = schema_.get('patternErrorMessage') or schema_.get(
-        'description') or f"Expected a match of {schema_.get('pattern')}"
-    return f'{text[0].lower()}{text[1:]}'.rstrip('.')
-
-
-def _message(error: ValidationError) -> tuple[str, bool]:
-    """Return the message of a schema error and whether it is about a key."""
-    path = tuple(error.absolute_path)
-    validator = error.validator
-    if validator == 'additionalProperties':
-        allowed = sorted(error.schema.get('properties', {}))
-        extra = sorted(set(error.instance) - set(allowed))
-        hint = f" (expected one of: {', '.join(allowed)})" if allowed else ''
-        return f"unknown key '{extra[0]}' in {_subject(path)}{hint}", True
-    if validator == 'not' and 'errorMessage' in error.schema:
-        # a key that was removed from the format: say where it went
-        return error.schema['errorMessage'], True
-    if validator == 'required':
-        missing = error.message.split("'")[1]
-        return f"{_subject(path)} lacks the required key '{missing}'", False
-    if validator == 'type':
-        expected = error.validator_value
-        kinds = expected if isinstance(expected, list) else [expected]
-        wanted = ' or '.join(_KIND_NAMES.get(k, str(k)) for k in kinds)
-        return (f'{_subject(path)} must be {wanted}, not '
-                f'{_describe(error.instance)}'), False
-    if validator == 'enum':
-        options = ', '.join(str(v) for v in error.validator_value)
-        return (f'{_subject(path)} is {_describe(error.instance)}, which is '
-                f'not one of: {options}'), False
-    if validator == 'const':
-        return (f'{_subject(path)} must be {error.validator_value}, not '
-                f'{_describe(error.instance)}'), False
-    if validator == 'pattern' and 'propertyNames' in \
-            error.absolute_schema_path:
-        problems = names.identifier_problems(str(error.instance)) \
-            if error.validator_value == IDENTIFIER_PATTERN else []
-        # every problem of the name at once, where we know them
-        reason = f'it {names.join_problems(problems)}' if problems else \
-            _pattern_hint(error.schema)
-        return f'{_describe(error.instance)} is not a valid name: {reason}', \
-            True
-    if validator == 'pattern':
-        return (f'{_subject(path)}: {_describe(error.instance)} is not valid: '
-                f'{_pattern_hint(error.schema)}'), False
-    if validator == 'propertyNames':
-        return (f'{_describe(error.instance)} is not a valid name: '
-                f"{error.schema.get('description', 'invalid name')}"), True
-    if validator in ('minItems', 'minProperties', 'minLength'):
-        return f'{_subject(path)} must not be empty', False
-    if validator in ('minimum', 'exclusiveMinimum'):
-        bound = error.validator_value
-        relation = 'at least' if validator == 'minimum' else 'more than'
-        return (f'{_subject(path)} must be {relation} {bound}, not '
-                f'{_describe(error.instance)}'), False
-    if validator == 'uniqueItems':
-        return f'{_subject(path)} lists an item twice', False
-    return f'{_subject(path)}: {error.message}', False
-
-
 def _leaves(error: ValidationError) -> Iterator[ValidationError]:
     """Pick the most useful errors below a oneOf/anyOf failure."""
-    if error.validator not in ('oneOf', 'anyOf') or not error.context:
+    if error.validator not in ('oneOf', 'anyOf') or not error.context or \
+            'errorMessage' in error.schema:
+        # an alternative the schema words itself is said as a whole
         yield error
         return
     # the alternative that got furthest into the document explains best
@@ -196,9 +109,8 @@ def _leaves(error: ValidationError) -> Iterator[ValidationError]:
         kinds = [e.validator_value for e in error.context
                  if e.validator == 'type']
         if kinds and len(kinds) == len(error.context):
-            wanted = ' or '.join(_KIND_NAMES.get(k, str(k)) for k in kinds)
             yield ValidationError(
-                f'must be {wanted}', validator='type',
+                f'must be {schema_messages.kinds(kinds)}', validator='type',
                 validator_value=kinds, instance=error.instance,
                 path=error.relative_path, schema=error.schema)
             return
@@ -219,20 +131,23 @@ def structure_problems(loaded: LoadedFile
     if is_valid(loaded.data):
         return []
     diagnostics = []
+    said: set[Diagnostic] = set()
     for error in _validator().iter_errors(loaded.data):
         for leaf in _leaves(error):
             path = tuple(error.absolute_path) + tuple(
                 leaf.relative_path)[len(error.relative_path):] \
                 if leaf is not error else tuple(error.absolute_path)
-            message, about_key = _message(leaf)
-            if about_key and leaf.validator == 'additionalProperties':
+            message, about_key = schema_messages.message(
+                leaf, tuple(path), loaded.data)
+            if leaf.validator == 'additionalProperties':
                 extra = sorted(set(leaf.instance) - set(
                     leaf.schema.get('properties', {})))
                 path = tuple(path) + (extra[0],)
-            elif about_key and leaf.validator == 'not':
-                pass  # the path of the error is the key itself
-            elif about_key:
+            elif 'propertyNames' in leaf.absolute_schema_path:
                 path = tuple(path) + (leaf.instance,)
-            diagnostics.append((tuple(path), Diagnostic(
-                loaded.location(path, key=about_key), message)))
+            diagnostic = Diagnostic(loaded.location(path, key=about_key), message)
+            # a name that breaks two rules (a pattern, a keyword) is said once
+            if diagnostic not in said:
+                said.add(diagnostic)
+                diagnostics.append((tuple(path), diagnostic))
     return diagnostics

@@ -17,6 +17,7 @@ from colcon_robmosys.generators import create_missing_user_files
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
 from colcon_robmosys.generators import write_tree
+from colcon_robmosys.model.schema import schema_path
 from colcon_robmosys.package_discovery.robmosys import checked_result
 from colcon_robmosys.report import report_problem
 from colcon_robmosys.report import write_report
@@ -54,11 +55,19 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
         what.add_argument(
             '--validate-only', action='store_true',
             help='Check the models and write nothing; exit non-zero on errors')
+        what.add_argument(
+            '--print-schema-path', action='store_true',
+            help='Print the path of the JSON Schema of robmosys.yaml files '
+            'installed with colcon-robmosys (for the settings of an editor) '
+            'and exit')
         add_diagnostics_arguments(parser)
         add_packages_arguments(parser)
 
     def main(self, *, context):  # noqa: D102
         args = context.args
+        if args.print_schema_path:
+            print(schema_path())
+            return 0
         request = diagnostics_request(args)
         if request is not None and report_problem(request.path):
             print(report_problem(request.path), file=sys.stderr)
