@@ -7,8 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from colcon_robmosys.check.context import CheckContext
-from colcon_robmosys.check.qos import qos_incompatibility
+from colcon_robmosys.check.qos import End, QoSRules, with_article as _a
 from colcon_robmosys.errors import Location
 from colcon_robmosys.mapping.names import connection_name, node_name
 from colcon_robmosys.mapping.portkinds import port_kind
@@ -17,7 +16,7 @@ from colcon_robmosys.model.types import (
     Component, Connection, Instance, Port, PortRef, Role, System)
 
 
-class WiringRules(CheckContext):
+class WiringRules(QoSRules):
     """What a system may instantiate and connect."""
 
     def _managed(self, instance: Instance) -> bool:
@@ -55,6 +54,7 @@ class WiringRules(CheckContext):
                            f"'{fqn}' of instance '{node_names[fqn]}'")
             node_names[fqn] = instance.name
             self._check_overrides(instance, component)
+            self._check_qos_overrides(instance, component)
             for after in instance.after:
                 other = system.instance(after)
                 if other is None:
@@ -92,7 +92,7 @@ class WiringRules(CheckContext):
                         ends.append((ref, port))
                         connected.add((ref.instance, ref.port))
             if len(ends) == len(connection.ends) == 1 or len(ends) == 2 and \
-                    self._check_connection(connection.location, ends[0][1], ends[1][1]):
+                    self._check_connection(system, connection.location, ends[0], ends[1]):
                 self._check_names(system, connection, ends, names)
         self._check_own_names(system, components, connected, names)
         for instance in system.instances:
@@ -112,9 +112,10 @@ class WiringRules(CheckContext):
                     not isinstance(self.models.get(subsystem.system), System)
         return False
 
-    def _check_connection(self, location: Location, a: Port,
-                          b: Port) -> bool:
+    def _check_connection(self, system: System, location: Location,
+                          end_a: tuple[PortRef, Port], end_b: tuple[PortRef, Port]) -> bool:
         """Check that two ports fit; return whether they do."""
+        a, b = end_a[1], end_b[1]
         if a.pattern is not b.pattern:
             self.error(location, f'cannot connect {_a(a.pattern.value)} '
                        f"port ('{a.name}') to {_a(b.pattern.value)} port "
@@ -132,15 +133,16 @@ class WiringRules(CheckContext):
             self.error(location, f"type mismatch: '{a.name}' exchanges "
                        f"{a.type}, '{b.name}' exchanges {b.type}")
             return False
-        writer, reader = _writer_reader(a, b)
-        if writer is not None and reader is not None:
-            problem = qos_incompatibility(writer.qos, reader.qos)
-            if problem:
-                self.error(location, 'incompatible QoS between '
-                           f"'{writer.name}' (writer) and '{reader.name}' "
-                           f'(reader): {problem}')
-                return False
-        return True
+        if not port_kind(a).topic_qos:
+            return True
+        instance_a, instance_b = (system.instance(end_a[0].instance),
+                                  system.instance(end_b[0].instance))
+        assert instance_a is not None and instance_b is not None
+        writer: End = (instance_a, a)
+        reader: End = (instance_b, b)
+        if port_kind(b).topic_writer:
+            writer, reader = reader, writer
+        return self._check_connection_qos(location, writer, reader)
 
     def _check_names(self, system: System, connection: Connection,
                      ends: list[tuple[PortRef, Port]], names: _Names) -> None:
@@ -231,11 +233,6 @@ class WiringRules(CheckContext):
                            f'{problem}')
 
 
-def _a(word: str) -> str:
-    """Return a word with its indefinite article."""
-    return f"{'an' if word[0] in 'aeiou' else 'a'} {word}"
-
-
 @dataclass
 class _Names:
     """The ROS 2 names the connections of a system have used so far."""
@@ -247,10 +244,3 @@ class _Names:
     kind: dict[str, tuple[str, Location]] = field(default_factory=dict)
     #: service, action or event name -> its server, and where first seen
     server: dict[str, tuple[str, Location]] = field(default_factory=dict)
-
-
-def _writer_reader(a: Port, b: Port) -> tuple[Port | None, Port | None]:
-    """Return which port writes and which reads a topic connection."""
-    if not port_kind(a).topic_qos:
-        return None, None
-    return (a, b) if port_kind(a).topic_writer else (b, a)

@@ -6,8 +6,9 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Any
 
-from colcon_robmosys.model.types import QoS
+from colcon_robmosys.model.types import QoS, QoSOverride
 
 
 @dataclass(frozen=True)
@@ -54,3 +55,24 @@ def resolve_qos(qos: QoS) -> ResolvedQoS:
                      'liveliness_lease_duration')
         if getattr(qos, name) is not None}
     return replace(PROFILES[qos.profile], **overrides)
+
+
+#: Policies whose ROS 2 parameter holds nanoseconds (the model: seconds).
+_DURATIONS = frozenset({'deadline', 'lifespan', 'liveliness_lease_duration'})
+
+
+def override_parameters(topic: str, entity: str, override: QoSOverride
+                        ) -> tuple[tuple[str, Any], ...]:
+    """Return the parameters that give a port the QoS an instance overrides.
+
+    They are ROS 2's own QoS overrides, ``qos_overrides.<topic>.<entity>.<policy>``,
+    which generated publishers and subscriptions declare (read-only) when
+    they are created; durations are integer nanoseconds there.
+
+    :param topic: the fully qualified name of the port's topic, remapped
+    :param entity: ``publisher`` or ``subscription``
+    """
+    return tuple(
+        (f'qos_overrides.{topic}.{entity}.{policy}',
+         round(value * 1e9) if policy in _DURATIONS else value)
+        for policy, value in override.policies)

@@ -17,7 +17,9 @@ from colcon_robmosys.mapping.connections import (
 from colcon_robmosys.mapping.cpp import RUNTIME_PACKAGE
 from colcon_robmosys.mapping.launch import (
     launch_files, LaunchFile, PARAMS_FILE, SystemNode)
+from colcon_robmosys.mapping.names import connection_name
 from colcon_robmosys.mapping.portkinds import port_kind
+from colcon_robmosys.mapping.qos import override_parameters
 from colcon_robmosys.model.parameters import freeze_parameter_value
 from colcon_robmosys.model.types import (
     Component, Instance, Language, PortRef, Role, System, Workspace)
@@ -182,17 +184,24 @@ def _plugin(component: Component) -> str:
     return f'{plan.package}::{plan.node_cls}'
 
 
-def _parameters(system: System, components: dict[str, Component]
-                ) -> tuple[NodeParameters, ...]:
+def _parameters(system: System, components: dict[str, Component],
+                topics: dict[tuple[str, str], str]) -> tuple[NodeParameters, ...]:
     nodes = []
     for instance in system.instances:
-        if not instance.parameters:
-            continue
-        types = {p.name: p.type for p in components[instance.name].parameters}
+        component = components[instance.name]
+        types = {p.name: p.type for p in component.parameters}
         # ROS 2 refuses an integer for a parameter declared as double
-        nodes.append(NodeParameters(node_fqn(instance), tuple(
-            (name, freeze_parameter_value(types[name], value))
-            for name, value in instance.parameters)))
+        values = [(name, freeze_parameter_value(types[name], value))
+                  for name, value in instance.parameters]
+        for override in instance.qos:
+            port = component.port(override.port)
+            assert port is not None
+            # an unconnected port keeps its own name, in the node's namespace
+            topic = topics.get((instance.name, port.name)) or \
+                connection_name(instance.namespace, instance.node_name, port.name, port.name)
+            values += override_parameters(topic, port_kind(port).entity.value, override)
+        if values:
+            nodes.append(NodeParameters(node_fqn(instance), tuple(values)))
     return tuple(nodes)
 
 
@@ -251,7 +260,7 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
     return SystemPackage(
         banner=banner, package=system.package, name=system.name, nodes=nodes,
         launch_files=launch_files(system, nodes, banner),
-        params=_parameters(system, components),
+        params=_parameters(system, components, topics),
         diagram=f'doc/{system.package}.dot',
         instances=_instances(system, components),
         edges=_edges(system, components, topics),

@@ -12,7 +12,7 @@ from colcon_robmosys.model.build_components import ComponentBuilder
 from colcon_robmosys.model.build_definitions import DefinitionBuilder
 from colcon_robmosys.model.loader import NodePath, RawData
 from colcon_robmosys.model.types import (
-    Connection, Instance, Model, PortRef, Subsystem, System)
+    Connection, Instance, Model, PortRef, QoSOverride, Subsystem, System)
 
 
 class FileBuilder(DefinitionBuilder, ComponentBuilder):
@@ -58,7 +58,7 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
                 tuple(self.at(ipath + ('parameters', n), key=True)
                       for n, _ in parameters),
                 bool(body.get('respawn', False)), body.get('timeout'),
-                body.get('host', '')))
+                body.get('host', ''), qos=self._qos_overrides(ipath, body)))
         hosts = {i.host for i in instances if i.host}
         for instance in instances:
             if instance.name.startswith('on_') and instance.name[3:] in hosts:
@@ -99,6 +99,17 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
         return System(info, name, tuple(instances), tuple(connections),
                       self.at(path + ('package',)),
                       raw.get('processes', 'per_instance'), tuple(subsystems))
+
+    def _qos_overrides(self, path: NodePath, raw: RawData) -> tuple[QoSOverride, ...]:
+        """Return the QoS an instance gives its ports (``qos: {port: {policy: value}}``)."""
+        overrides = []
+        for port, policies in raw.get('qos', {}).items():
+            if policies.get('history') == 'keep_all' and 'depth' in policies:
+                self.error(path + ('qos', port, 'depth'), f"instance '{path[-1]}', port "
+                           f"'{port}': 'depth' has no meaning with history 'keep_all'")
+            overrides.append(QoSOverride(port, tuple(policies.items()),
+                                         self.at(path + ('qos', port), key=True)))
+        return tuple(overrides)
 
 
 def _camel(package: str) -> str:

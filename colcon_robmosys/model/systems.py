@@ -5,11 +5,30 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 from colcon_robmosys.errors import Location
 from colcon_robmosys.model.base import PackageInfo
+from colcon_robmosys.model.components import QoS
+
+
+@dataclass(frozen=True)
+class QoSOverride:
+    """New values of QoS policies of one port, for one instance."""
+
+    port: str
+    #: policy -> value, as a port's ``qos`` spells them (no ``profile``)
+    policies: tuple[tuple[str, Any], ...]
+    #: where the instance names the port
+    location: Location
+
+    def applied_to(self, qos: QoS) -> QoS:
+        """Return a port's QoS with these policies in place of its own."""
+        policies = dict(self.policies)
+        if policies.get('history') == 'keep_all':
+            policies.setdefault('depth', None)
+        return replace(qos, **policies)
 
 
 @dataclass(frozen=True)
@@ -35,11 +54,22 @@ class Instance:
     #: the node's name where it differs from the instance's: an instance of a
     #: subsystem (``robot1.map_server``) is the node ``map_server``
     node: str = ''
+    #: the QoS the instance gives its ports in place of the component's
+    qos: tuple[QoSOverride, ...] = ()
 
     @property
     def node_name(self) -> str:
         """Return the name of the instance's node (in its namespace)."""
         return self.node or self.name
+
+    def qos_of(self, port: str, qos: QoS) -> QoS:
+        """Return the QoS a port of the instance has: the component's, overridden."""
+        override = self.qos_override(port)
+        return qos if override is None else override.applied_to(qos)
+
+    def qos_override(self, port: str) -> QoSOverride | None:
+        """Return the instance's override of a port's QoS, if any."""
+        return next((o for o in self.qos if o.port == port), None)
 
 
 @dataclass(frozen=True)

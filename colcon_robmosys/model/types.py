@@ -21,7 +21,8 @@ from colcon_robmosys.model.components import (
 from colcon_robmosys.model.definitions import (
     Action, CommunicationObject, Constant, Event, Field, FieldType, Query,
     ServiceDefinition, Structure)
-from colcon_robmosys.model.systems import Connection, Instance, PortRef, Subsystem, System
+from colcon_robmosys.model.systems import (
+    Connection, Instance, PortRef, QoSOverride, Subsystem, System)
 
 __all__ = [
     'Action', 'Activity', 'CommunicationObject', 'Component', 'Connection',
@@ -29,8 +30,8 @@ __all__ = [
     'InterfaceKind', 'InterfaceRef', 'Language', 'LIFECYCLE_TRANSITIONS',
     'Maintainer', 'Model', 'model_key', 'ModelFile', 'PackageInfo', 'Parameter',
     'ParameterRange', 'ParameterValue', 'Pattern', 'PATTERN_INTERFACE', 'Port',
-    'PortRef', 'PRIMITIVE_TYPES', 'QoS', 'Query', 'Role', 'ServiceDefinition',
-    'Structure', 'Subsystem', 'System', 'Workspace',
+    'PortRef', 'PRIMITIVE_TYPES', 'QoS', 'QoSOverride', 'Query', 'Role',
+    'ServiceDefinition', 'Structure', 'Subsystem', 'System', 'Workspace',
 ]
 
 Model = Union[ServiceDefinition, Component, System]

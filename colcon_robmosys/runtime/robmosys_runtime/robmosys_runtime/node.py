@@ -3,11 +3,10 @@
 """
 The lifecycle bookkeeping of a component: what a generated node does not state.
 
-A component's ports and timers exist from configure to cleanup (or shutdown,
-or error handling); its activities run only while it is active, one callback
-at a time each (a mutually exclusive callback group and a lock per activity);
-a function that raises fails the transition it runs in, or is logged if it
-runs in an activity, and never stops the node.
+A component's ports and timers exist from configure to cleanup (or shutdown, or error
+handling); its activities run only while it is active, one callback at a time each (a mutually
+exclusive callback group and a lock per activity); a function that raises fails the transition
+it runs in, or is logged if it runs in an activity, and never stops the node.
 """
 
 from __future__ import annotations
@@ -25,6 +24,7 @@ from rclpy.timer import Timer
 from robmosys_runtime.announce import announce_component
 from robmosys_runtime.events import EventClient, EventServer
 from robmosys_runtime.ports import ActionClientPort, ActionServer, QueryClient
+from robmosys_runtime.qos import overridable
 
 Function = Callable[..., Any]
 Entity = TypeVar('Entity')
@@ -92,7 +92,7 @@ class ComponentNode(LifecycleNode):
 
     def add_publisher(self, name: str, msg_type: Any, qos: QoSProfile) -> Any:
         """Create a lifecycle publisher (a provided push or a required send port)."""
-        entity = self.create_lifecycle_publisher(msg_type, name, qos)
+        entity = self.create_lifecycle_publisher(msg_type, name, **overridable(qos))
         return self._keep(name, entity, lambda: self.destroy_lifecycle_publisher(entity))
 
     def add_subscription(self, name: str, msg_type: Any, qos: QoSProfile,
@@ -102,7 +102,8 @@ class ComponentNode(LifecycleNode):
         group = self.activities[activity].callback_group if activity else None
         callback = (self.run_activity_callback(activity, functions) if activity
                     else lambda message: None)  # no activity is triggered by it
-        entity = self.create_subscription(msg_type, name, callback, qos, callback_group=group)
+        entity = self.create_subscription(msg_type, name, callback, **overridable(qos),
+                                          callback_group=group)
         return self._keep(name, entity, lambda: self.destroy_subscription(entity))
 
     def add_service(self, name: str, srv_type: Any, activity: str, function: Function) -> Any:

@@ -154,6 +154,38 @@ protected:
     return port;
   }
 
+  /// The QoS policies of a port that an operator may override at launch time.
+  /**
+   * ROS 2's own read-only parameters qos_overrides.<topic>.<publisher|subscription>.<policy>,
+   * declared when the port is created (on configure; again after a cleanup, which finds
+   * them declared and keeps their values). avoid_ros_namespace_conventions is left out:
+   * it would change the name a system remaps.
+   */
+  static rclcpp::QosOverridingOptions qos_overriding_options()
+  {
+    using rclcpp::QosPolicyKind;
+    return rclcpp::QosOverridingOptions(
+      {QosPolicyKind::History, QosPolicyKind::Depth, QosPolicyKind::Reliability,
+        QosPolicyKind::Durability, QosPolicyKind::Deadline, QosPolicyKind::Lifespan,
+        QosPolicyKind::Liveliness, QosPolicyKind::LivelinessLeaseDuration});
+  }
+
+  /// Return the options of a publisher port: its QoS may be overridden.
+  static rclcpp::PublisherOptions publisher_options()
+  {
+    rclcpp::PublisherOptions options;
+    options.qos_overriding_options = qos_overriding_options();
+    return options;
+  }
+
+  /// Return the options of a subscription port: its QoS may be overridden.
+  static rclcpp::SubscriptionOptions subscription_options()
+  {
+    rclcpp::SubscriptionOptions options;
+    options.qos_overriding_options = qos_overriding_options();
+    return options;
+  }
+
   /// Assign a lifecycle publisher: it publishes while the node is active.
   template<typename T>
   std::shared_ptr<T> & keep_publisher(std::shared_ptr<T> & port, std::shared_ptr<T> created)

@@ -309,9 +309,9 @@ void Everything::create_ports()
 {
   keep_publisher(
     pTick, create_publisher<all_ports_msgs::msg::Tick>(
-      "pTick", qos_pTick()));
+      "pTick", qos_pTick(), publisher_options()));
   {
-    rclcpp::SubscriptionOptions options;
+    rclcpp::SubscriptionOptions options = subscription_options();
     options.callback_group = activity("OnTick");
     keep(
       rTick, create_subscription<all_ports_msgs::msg::Tick>(
@@ -324,7 +324,8 @@ void Everything::create_ports()
   // no activity is triggered by this port: it receives and drops
   keep(
     rQuiet, create_subscription<all_ports_msgs::msg::Tick>(
-      "rQuiet", qos_rQuiet(), [](const all_ports_msgs::msg::Tick &) {}));
+      "rQuiet", qos_rQuiet(), [](const all_ports_msgs::msg::Tick &) {},
+      subscription_options()));
   keep(
     qTwice, create_query_server<all_ports_msgs::srv::Twice>(
       "qTwice", "Serve",

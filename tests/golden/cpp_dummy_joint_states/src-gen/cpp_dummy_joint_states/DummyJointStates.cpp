@@ -104,7 +104,7 @@ void DummyJointStates::create_ports()
 {
   keep_publisher(
     joint_states, create_publisher<sensor_msgs::msg::JointState>(
-      "joint_states", qos_joint_states()));
+      "joint_states", qos_joint_states(), publisher_options()));
   add_periodic(
     "Publish", std::chrono::nanoseconds(100000000), [this]() {
       fPublish();

@@ -120,7 +120,7 @@ void DummyLaser::create_ports()
 {
   keep_publisher(
     scan, create_publisher<sensor_msgs::msg::LaserScan>(
-      "scan", qos_scan()));
+      "scan", qos_scan(), publisher_options()));
   add_periodic(
     "Scan", std::chrono::nanoseconds(100000000), [this]() {
       fScan();

@@ -137,7 +137,7 @@ void DummyMapServer::create_ports()
 {
   keep_publisher(
     map, create_publisher<nav_msgs::msg::OccupancyGrid>(
-      "map", qos_map()));
+      "map", qos_map(), publisher_options()));
   add_periodic(
     "Publish", std::chrono::nanoseconds(1000000000), [this]() {
       fPublish();

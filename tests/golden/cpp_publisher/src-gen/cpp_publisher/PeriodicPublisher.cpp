@@ -92,7 +92,7 @@ void PeriodicPublisher::create_ports()
 {
   keep_publisher(
     pMap, create_publisher<simple_msgs::msg::Map>(
-      "pMap", qos_pMap()));
+      "pMap", qos_pMap(), publisher_options()));
   add_periodic(
     "Activity1", std::chrono::nanoseconds(500000000), [this]() {
       fPublishing();

@@ -67,7 +67,7 @@ const Receiver::Parameters & Receiver::params() const
 void Receiver::create_ports()
 {
   {
-    rclcpp::SubscriptionOptions options;
+    rclcpp::SubscriptionOptions options = subscription_options();
     options.callback_group = activity("Receive");
     keep(
       sMap, create_subscription<simple_msgs::msg::Map>(

@@ -115,7 +115,7 @@ void Sender::create_ports()
 {
   keep_publisher(
     sMap, create_publisher<simple_msgs::msg::Map>(
-      "sMap", qos_sMap()));
+      "sMap", qos_sMap(), publisher_options()));
   add_periodic(
     "Send", std::chrono::nanoseconds(500000000), [this]() {
       fSending();

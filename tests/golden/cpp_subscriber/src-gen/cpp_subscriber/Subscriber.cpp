@@ -67,7 +67,7 @@ const Subscriber::Parameters & Subscriber::params() const
 void Subscriber::create_ports()
 {
   {
-    rclcpp::SubscriptionOptions options;
+    rclcpp::SubscriptionOptions options = subscription_options();
     options.callback_group = activity("HandleMsg");
     keep(
       rMap, create_subscription<simple_msgs::msg::Map>(
