@@ -27,7 +27,8 @@ from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.generators import (
     create_missing_user_files, generate_package, MANIFEST, read_manifest)
 from colcon_robmosys.generators import plan_package
-from colcon_robmosys.generators.filters import cmake_str, cpp_str, yaml_value
+from colcon_robmosys.generators.filters import (
+    cmake_str, cpp_str, LINE_LENGTH, py_literal, yaml_value)
 from colcon_robmosys.model.fieldtypes import interface_comment_problem
 
 PLAIN = 'Plain words'
@@ -320,6 +321,20 @@ def test_no_control_character_reaches_a_model(tmp_path):
 @pytest.mark.parametrize('value', [*HOSTILE, ['a', '"b"'], 2.0, -3, True, 'ä\x7f\x9f\ufeff'])
 def test_yaml_value_reads_back(value):
     assert yaml.safe_load(f'key: {yaml_value(value)}\n') == {'key': value}
+
+
+@pytest.mark.parametrize('value', [
+    *HOSTILE,
+    ('aFibonacci/_action/cancel_goal',
+     '/examples/fibonacci_server/aFibonacci/_action/cancel_goal'),
+    ['x' * 120, ('short', 'y' * 200)],
+])
+def test_py_literal_reads_back_and_fits(value):
+    """A literal written at the deepest indent of the launch files keeps ament_flake8's limit."""
+    text = py_literal(value, 16)
+    assert ast.literal_eval(text) == value
+    lines = (' ' * 16 + text + ',').splitlines()
+    assert all(len(line) <= LINE_LENGTH for line in lines), text
 
 
 def test_cmake_strings_are_data(tmp_path):

@@ -76,12 +76,13 @@ def py_literal(value: Any, indent: int, prefix: int = 0) -> str:
 
     The literal starts after ``indent`` spaces and ``prefix`` more characters
     and is followed by one character (a comma or a parenthesis). A string
-    that does not fit becomes adjacent literals in parentheses, a list one
-    item per line; the value the literal evaluates to stays the same.
+    that does not fit becomes adjacent literals in parentheses, a list or a
+    tuple one item per line; the value the literal evaluates to stays the
+    same.
     """
     text = repr(value)
     if len(text) + indent + prefix + 1 <= LINE_LENGTH or \
-            not isinstance(value, (str, list)):
+            not isinstance(value, (str, list, tuple)):
         return text
     inner = indent + 4
     pad = ' ' * inner
@@ -89,7 +90,8 @@ def py_literal(value: Any, indent: int, prefix: int = 0) -> str:
         lines = [pad + part for part in split_literal(value, LINE_LENGTH - inner, repr)]
         return '(\n' + '\n'.join(lines) + '\n' + ' ' * indent + ')'
     lines = [pad + py_literal(item, inner) + ',' for item in value]
-    return '[\n' + '\n'.join(lines) + '\n' + ' ' * indent + ']'
+    brackets = '[]' if isinstance(value, list) else '()'
+    return brackets[0] + '\n' + '\n'.join(lines) + '\n' + ' ' * indent + brackets[1]
 
 
 def py_docstring(text: Any, indent: int = 0) -> str:
