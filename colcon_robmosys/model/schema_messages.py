@@ -90,6 +90,11 @@ def _owner(path: NodePath, root: Any) -> tuple[str, int] | None:
         if section in _ENTRIES and isinstance(name, str):
             found = (f'{_ENTRIES[str(section)]} {names.shown(name)}', index + 2)
             index += 2
+        elif section == 'qos' and isinstance(name, str) and found is not None and \
+                found[1] == index and found[0].startswith('instance '):
+            # an instance's QoS overrides are keyed by the component's ports
+            found = (f'{found[0]}, port {names.shown(name)}', index + 2)
+            index += 2
         else:
             index += 1
     return found
