@@ -27,6 +27,7 @@ from colcon_robmosys.mapping.component import (
 from colcon_robmosys.mapping.cpp_context import (
     CppActivity, CppComponent, CppFunction, CppIncludes, CppParameter, CppPort, CppRange)
 from colcon_robmosys.mapping.literals import cpp_str, split_literal
+from colcon_robmosys.mapping.parameters import parameter_page
 from colcon_robmosys.mapping.portkinds import Delivery, Entity, port_kind, Returns
 from colcon_robmosys.mapping.qos import resolve_qos
 from colcon_robmosys.mapping.userfiles import user_folders, UserFolders
@@ -324,4 +325,5 @@ def spell_cpp(component: Component, plan: ComponentPlan,
             depend=build_depends,
             test=['ament_cmake_cpplint', 'ament_cmake_uncrustify',
                   'ament_cmake_gtest', 'ament_cmake_pytest']),
-        folders=folders or user_folders(component))
+        folders=folders or user_folders(component),
+        parameter_page=parameter_page(component, banner))

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from typing import Mapping
 
 from colcon_robmosys.mapping.common import Banner, PackageXml
+from colcon_robmosys.mapping.parameters import ParameterPage
 from colcon_robmosys.mapping.userfiles import UserFolders
 
 
@@ -120,6 +121,8 @@ class CppComponent:
     package_xml: PackageXml
     #: where the user's files are, next to the model
     folders: UserFolders
+    #: the page of its parameters (doc/parameters.md), if it has any
+    parameter_page: ParameterPage | None = None
     #: the skeleton or the user's file (impl templates)
     skeleton: bool = False
 
