@@ -174,7 +174,8 @@ def _parameters(system: System, components: dict[str, Component]
     for instance in system.instances:
         if not instance.parameters:
             continue
-        types = {p.name: p.type for p in components[instance.name].parameters}
+        types = dict(NODE_PARAMETERS)
+        types.update((p.name, p.type) for p in components[instance.name].parameters)
         # ROS 2 refuses an integer for a parameter declared as double
         nodes.append(NodeParameters(node_fqn(instance), tuple(
             (name, freeze_parameter_value(types[name], value))

@@ -220,7 +220,7 @@ class ComponentBuilder(BuilderBase):
                        'it never changes after start, so nothing runs on_change')
         if 'default' in raw and (parameter.one_of or parameter.size) and \
                 not parameter_value_problem(type_name, default):
-            problem = rule_problem(parameter, parameter.default)
+            problem = rule_problem(parameter, default)
             if problem:
                 self.error(path + ('default',), f"parameter '{name}': default {problem}")
         return parameter

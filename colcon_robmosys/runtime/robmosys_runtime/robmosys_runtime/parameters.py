@@ -95,7 +95,10 @@ class ParameterRules:
         rule = self._rules.get(name)
         if rule is None:
             return None
-        problem = rule_problem(rule, value)
+        try:
+            problem = rule_problem(rule, value)
+        except TypeError:
+            return None  # a value of another type: the descriptor refuses it
         if problem is None and rule.validate is not None and self._started:
             problem = rule.validate(value) or None
         return None if problem is None else f"parameter '{name}': {problem}"
