@@ -111,10 +111,10 @@ def _node_imports(names: dict[InterfaceRef, str], plan: ComponentPlan,
     for ref, local in names.items():
         alias = '' if local == ref.name else f' as {local}'
         _add(modules, f'{ref.package}.{ref.kind.value}', {f'{ref.name}{alias}'})
-    if plan.parameters:
-        _add(modules, 'rcl_interfaces.msg', {'ParameterDescriptor'})
     if any(_rule(p) for p in plan.parameters):
         _add(modules, 'robmosys_runtime', {'ParameterRule', 'ParameterRules'})
+    if plan.parameters:
+        _add(modules, 'rcl_interfaces.msg', {'ParameterDescriptor'})
         for parameter in plan.parameters:
             if parameter.range is not None:
                 _add(modules, 'rcl_interfaces.msg', {

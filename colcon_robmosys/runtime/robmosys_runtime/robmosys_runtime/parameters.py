@@ -70,7 +70,8 @@ def rule_problem(rule: ParameterRule, value: Any) -> Optional[str]:
 
 
 class ParameterRules:
-    """The rules of a node's parameters, checked in its on-set-parameters callback.
+    """
+    The rules of a node's parameters, checked in its on-set-parameters callback.
 
     Create it before the parameters are declared, so that a value given at
     start breaks no rule either, and call :meth:`start` once they are. The
