@@ -84,11 +84,16 @@ def built(tmp_path_factory) -> BuiltWorkspace:
     return build_workspace(src, tmp_path_factory.mktemp('params_ws'))
 
 
+def _launched(built: BuiltWorkspace) -> dict[str, NodeLaunch]:
+    """Return the nodes of tuner_system's launch files, by instance."""
+    share = built.share('tuner_system')
+    return {n.name: n for n in read_launch_file(nodes_launch_file(share), share)}
+
+
 @pytest.fixture(scope='module')
 def running(built) -> Iterator[tuple[dict[str, NodeLaunch], dict[str, Background],
                                      LifecycleDriver]]:
-    share = built.share('tuner_system')
-    nodes = {n.name: n for n in read_launch_file(nodes_launch_file(share), share)}
+    nodes = _launched(built)
     domain_id = free_domain_id()
     with contextlib.ExitStack() as stack:
         env = built.env(domain_id)
@@ -154,9 +159,7 @@ def test_the_node_still_configures_with_valid_values(running):
 
 
 def test_a_start_value_that_breaks_a_rule_stops_the_node(built):
-    share = built.share('tuner_system')
-    node = next(n for n in read_launch_file(nodes_launch_file(share), share)
-                if n.name == 'second')
+    node = _launched(built)['second']
     result = run([*node.command(built.install), '-p', 'mode:=medium'],
                  env=built.env(free_domain_id()), timeout=60)
     assert result.returncode != 0
@@ -165,9 +168,7 @@ def test_a_start_value_that_breaks_a_rule_stops_the_node(built):
 
 
 def test_a_validator_refuses_the_value_of_the_moment_on_configure(built):
-    share = built.share('tuner_system')
-    node = next(n for n in read_launch_file(nodes_launch_file(share), share)
-                if n.name == 'second')
+    node = _launched(built)['second']
     domain_id = free_domain_id()
     # a start value is checked by the rules of the model, the user's validators
     # run from configure on: this one refuses it there
