@@ -226,6 +226,16 @@ def test_cpp_sender_sends_to_cpp_receiver_with_checked_parameters(
         assert not set_parameter('frame', ParameterValue(
             type=ParameterType.PARAMETER_STRING, string_value='odom'))
         assert set_parameter('height', ParameterValue(type=integer, integer_value=6))
+        # the rules beyond the descriptor refuse with their reason; on_change runs after
+        sender = fqn['sender']
+        assert driver.set_parameters(sender, {'shape.kind': 'circle'})['shape.kind'] == (
+            False, "parameter 'shape.kind': 'circle' is not one of 'rectangle', 'square'")
+        assert driver.set_parameters(sender, {'shape.max_cells': 29}) == {'shape.max_cells': (
+            False, "parameter 'shape.max_cells': fewer than width x height cells")}
+        assert driver.set_parameters(sender, {'frame': ''})['frame'][0] is False
+        assert driver.set_parameters(sender, {'shape.kind': 'square'})['shape.kind'][0]
+        assert wait_until(lambda: 'shape is now square' in out['sender'].output(), 10)
+        assert driver.parameters(sender, ['shape.kind']) == {'shape.kind': 'square'}
 
         _bring_up(driver, [fqn['receiver'], fqn['sender']])
         assert wait_until(lambda: 'received map: width 5, height 6' in out['receiver'].output(),

@@ -297,6 +297,18 @@ def test_hostile_text_is_only_data(tmp_path, plain, text):
             # a text of several lines is a run of // comments
             if _words(text) in _words(' '.join(c.lstrip('/') for c in comments)):
                 seen.add('cpp comment')
+        elif path.suffix == '.md':
+            # the parameter page: each cell reads back as the text, none ends early
+            rows, plain_rows = _md_rows(data), _md_rows(plain_data)
+            assert [len(r) for r in rows] == [len(r) for r in plain_rows]
+            label = next(r for r in rows if r[0] == '`label`')
+            assert label[2] == repr(text)
+            assert label[-1] == '\n'.join(line.strip() for line in text.strip().splitlines())
+            # no tag but the line breaks: every other '<' of the text is escaped
+            table = [re.sub(r'\\.|<br>', '', line) for line in data.splitlines()
+                     if line.startswith('| ')]
+            assert not any('<' in line for line in table)
+            seen.add('markdown')
         elif path.name == MANIFEST:
             assert read_manifest(path).keys() == read_manifest(plain_files[name]).keys()
         else:
@@ -304,7 +316,28 @@ def test_hostile_text_is_only_data(tmp_path, plain, text):
             # (a generator that starts writing some must check it parses here)
             assert data == plain_data, f'{name}: model text reached a file not checked here'
     assert seen == {'python', 'docstring', 'xml', 'yaml', 'msg', 'cpp', 'cpp comment',
-                    'installed model'}
+                    'installed model', 'markdown'}
+
+
+def _md_rows(page: str) -> list[list[str]]:
+    """Return the cells of the rows of a Markdown table, unescaped, as CommonMark reads them."""
+    rows = []
+    for line in page.splitlines():
+        if not line.startswith('| ') or line.startswith('| ---'):
+            continue
+        cells, cell, i = [], '', 1
+        while i < len(line):
+            if line[i] == '\\':
+                cell, i = cell + line[i + 1], i + 2
+            elif line.startswith('<br>', i):
+                cell, i = cell + '\n', i + 4
+            elif line[i] == '|':
+                cells.append(cell.strip())
+                cell, i = '', i + 1
+            else:
+                cell, i = cell + line[i], i + 1
+        rows.append(cells)
+    return rows
 
 
 def test_no_control_character_reaches_a_model(tmp_path):

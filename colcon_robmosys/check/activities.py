@@ -94,6 +94,14 @@ def signature_problems(component: Component) -> list[Diagnostic]:
         for name in names:
             callers.setdefault(name, []).append(
                 (None, f"the lifecycle transition '{transition}'"))
+    for parameter in component.parameters:
+        for name in parameter.on_change:
+            callers.setdefault(name, []).append(
+                (None, f"a change of the parameter '{parameter.name}'"))
+        if parameter.validate is not None:
+            callers.setdefault(parameter.validate, []).append((
+                ('value', parameter.type),
+                f"the validation of the parameter '{parameter.name}' (a {parameter.type} value)"))
     problems = []
     for function in component.functions:
         calls = callers.get(function.name, [])

@@ -7,11 +7,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from colcon_robmosys.check.parameters import everywhere_problems, override_problems
 from colcon_robmosys.check.qos import End, QoSRules, with_article as _a
 from colcon_robmosys.errors import Location
 from colcon_robmosys.mapping.names import connection_name, node_name
 from colcon_robmosys.mapping.portkinds import port_kind
-from colcon_robmosys.model.parameters import parameter_value_problem
 from colcon_robmosys.model.types import (
     Component, Connection, Instance, Port, PortRef, Role, System)
 
@@ -53,7 +53,7 @@ class WiringRules(QoSRules):
                            f"instance '{instance.name}' has the node name "
                            f"'{fqn}' of instance '{node_names[fqn]}'")
             node_names[fqn] = instance.name
-            self._check_overrides(instance, component)
+            self.diagnostics += override_problems(instance, component)
             self._check_qos_overrides(instance, component)
             for after in instance.after:
                 other = system.instance(after)
@@ -95,6 +95,10 @@ class WiringRules(QoSRules):
                     self._check_connection(system, connection.location, ends[0], ends[1]):
                 self._check_names(system, connection, ends, names)
         self._check_own_names(system, components, connected, names)
+        if len(components) == len(system.instances):
+            # (an instance whose component is unknown might have been the one)
+            self.diagnostics += everywhere_problems(system, (
+                (i, components[i.name]) for i in system.instances))
         for instance in system.instances:
             component = components.get(instance.name)
             for port in component.ports if component else ():
@@ -208,29 +212,6 @@ class WiringRules(QoSRules):
                                        port.node_name)
                 if name in names.kind:
                     self._use_name(name, port, instance.location, names)
-
-    def _check_overrides(self, instance: Instance, component: Component) -> None:
-        parameters = {p.name: p for p in component.parameters}
-        locations = instance.parameter_locations or \
-            (instance.location,) * len(instance.parameters)
-        for (name, value), location in zip(instance.parameters, locations):
-            parameter = parameters.get(name)
-            if parameter is None:
-                known = ', '.join(sorted(parameters)) or 'none'
-                self.error(location,
-                           f"instance '{instance.name}': component "
-                           f"'{component.name}' has no parameter '{name}' "
-                           f'(its parameters: {known})')
-                continue
-            problem = parameter_value_problem(parameter.type, value)
-            if problem is None and parameter.range is not None and \
-                    not parameter.range.start <= value <= parameter.range.end:
-                problem = (f'{value} is out of the range '
-                           f'[{parameter.range.start}, {parameter.range.end}]')
-            if problem:
-                self.error(location,
-                           f"instance '{instance.name}', parameter '{name}': "
-                           f'{problem}')
 
 
 @dataclass

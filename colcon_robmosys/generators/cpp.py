@@ -21,6 +21,8 @@ FILES = (
     Row(f'{_SRC}/{{cls}}_main.cpp', 'component_cpp/main.cpp.jinja'),
     Row('CMakeLists.txt', 'component_cpp/CMakeLists.txt.jinja'),
     Row('package.xml', 'common/package.xml.jinja', part='package_xml'),
+    Row('doc/parameters.md', 'common/parameters.md.jinja', part='parameter_page',
+        when='parameter_page'),
     Row(f'{_SKEL}.hpp', 'component_cpp/impl.hpp.jinja', when='has_impl',
         skeleton=True),
     Row(f'{_SKEL}.cpp', 'component_cpp/impl.cpp.jinja', when='has_impl',

@@ -194,6 +194,22 @@ def dot_str(text: Any) -> str:
         .replace('\\\\n', '\\n') + '"'
 
 
+#: what a Markdown text escapes with a backslash: what could start markup, a
+#: table cell's end, an HTML tag or an entity (CommonMark escapes any ASCII
+#: punctuation so)
+_MARKDOWN_ESCAPED = re.compile(r'([\\`*_{}\[\]()#+\-!|<>&~])')
+
+
+def md_text(text: Any) -> str:
+    """Write text as Markdown text that renders as itself, in a table cell too.
+
+    Line breaks become ``<br>`` (a cell is one line), after the text is
+    escaped, so the only tags are those.
+    """
+    escaped = _MARKDOWN_ESCAPED.sub(r'\\\1', str(text))
+    return '<br>'.join(line.strip() for line in escaped.strip().splitlines())
+
+
 FILTERS: dict[str, Callable[..., str]] = {
     'xml': xml,
     'xml_attr': xml_attr,
@@ -208,4 +224,5 @@ FILTERS: dict[str, Callable[..., str]] = {
     'cpp_comment': cpp_comment,
     'cmake_str': cmake_str,
     'dot_str': dot_str,
+    'md_text': md_text,
 }

@@ -21,6 +21,8 @@ FILES = (
     Row('scripts/{cls}', 'component_python/executable.jinja', executable=True),
     Row('CMakeLists.txt', 'component_python/CMakeLists.txt.jinja'),
     Row('package.xml', 'common/package.xml.jinja', part='package_xml'),
+    Row('doc/parameters.md', 'common/parameters.md.jinja', part='parameter_page',
+        when='parameter_page'),
     Row(_SKEL, 'component_python/impl.py.jinja', when='has_impl',
         skeleton=True),
 )

@@ -54,6 +54,8 @@ class FunctionPlan:
     code: str | None
     description: str
     location: Location
+    #: the type of the parameter values it validates, if it is a validator
+    validates: str | None = None
 
 
 @dataclass(frozen=True)
@@ -172,14 +174,21 @@ def plan_component(component: Component) -> ComponentPlan:
         activities=tuple(ActivityPlan(a.name, a.period, a.functions,
                                       a.description, a.trigger)
                          for a in component.activities),
-        functions=tuple(_function(f, ports) for f in component.functions),
+        functions=tuple(_function(f, ports, component.parameters)
+                        for f in component.functions),
         parameters=component.parameters,
         lifecycle=component.lifecycle,
         depends=tuple(model_dependencies(component)))
 
 
-def _function(function: Function, ports: list[PortPlan]) -> FunctionPlan:
-    """Return how a function is called, from the port that runs it."""
+def _function(function: Function, ports: list[PortPlan],
+              parameters: tuple[Parameter, ...]) -> FunctionPlan:
+    """Return how a function is called, from the port or parameter that runs it."""
+    validated = next((p for p in parameters if p.validate == function.name), None)
+    if validated is not None:
+        # check/activities.py makes it a validator only
+        return FunctionPlan(function.name, ('value',), Returns.PROBLEM, None, function.code,
+                            function.description, function.location, validated.type)
     runners = [p for p in ports if function.name in p.functions]
     delivered = {(p.kind.delivers, p.type) for p in runners}
     if len(delivered) > 1:

@@ -19,18 +19,19 @@ from __future__ import annotations
 
 import re
 import textwrap
-from typing import Any
 
 from colcon_robmosys.mapping.common import banner_of, package_xml, unique
 from colcon_robmosys.mapping.component import (
     ActivityPlan, ComponentPlan, FunctionPlan, PortPlan)
 from colcon_robmosys.mapping.cpp_context import (
-    CppActivity, CppComponent, CppFunction, CppIncludes, CppParameter, CppPort, CppRange)
-from colcon_robmosys.mapping.literals import cpp_str, split_literal
+    CppActivity, CppComponent, CppFunction, CppIncludes, CppPort)
+from colcon_robmosys.mapping.cpp_parameters import (
+    cpp_parameter, cpp_parameter_groups, PARAMETER_TYPES)
+from colcon_robmosys.mapping.parameters import parameter_page
 from colcon_robmosys.mapping.portkinds import Delivery, Entity, port_kind, Returns
 from colcon_robmosys.mapping.qos import resolve_qos
 from colcon_robmosys.mapping.userfiles import user_folders, UserFolders
-from colcon_robmosys.model.types import Component, InterfaceRef, Parameter, QoS
+from colcon_robmosys.model.types import Component, InterfaceRef, QoS
 
 #: The ROS 2 packages a C++ component needs in the prefix to build at all.
 CPP_CLIENT_PACKAGES = ('rclcpp', 'rclcpp_lifecycle', 'rclcpp_components')
@@ -69,6 +70,7 @@ PARAMETERS = {
 RETURN_TYPES = {
     Returns.NOTHING: 'void', Returns.ANSWER: 'void',
     Returns.RESULT: '{type}::Result', Returns.CONDITION: 'bool',
+    Returns.PROBLEM: 'std::string',
 }
 
 #: entity -> the header of robmosys_runtime its port needs (its member type, or
@@ -83,19 +85,6 @@ RUNTIME_HEADERS = {
 
 #: the runtime package: the lifecycle bookkeeping and the ports' classes
 RUNTIME_PACKAGE = 'robmosys_runtime'
-
-#: model type -> (C++ type, ParameterValue accessor)
-PARAMETER_TYPES = {
-    'bool': ('bool', 'as_bool'),
-    'int': ('int64_t', 'as_int'),
-    'double': ('double', 'as_double'),
-    'string': ('std::string', 'as_string'),
-    'bool[]': ('std::vector<bool>', 'as_bool_array'),
-    'int[]': ('std::vector<int64_t>', 'as_integer_array'),
-    'double[]': ('std::vector<double>', 'as_double_array'),
-    'string[]': ('std::vector<std::string>', 'as_string_array'),
-    'byte[]': ('std::vector<uint8_t>', 'as_byte_array'),
-}
 
 
 def header_name(ref: InterfaceRef) -> str:
@@ -149,74 +138,6 @@ def qos_statements(qos: QoS) -> list[str]:
     return lines
 
 
-def _cpp_value(value: Any, type_: str) -> str:
-    """Write a parameter value as a C++ expression of its type."""
-    if type_ == 'bool':
-        return 'true' if value else 'false'
-    if type_ == 'int':
-        return f'INT64_C({int(value)})'
-    if type_ == 'byte':
-        return f'UINT8_C({int(value)})'
-    if type_ == 'double':
-        return repr(float(value))
-    return f'std::string({cpp_str(value)})'
-
-
-def string_lines(target: str, text: str, width: int = 72) -> list[str]:
-    """Assign a string literal to target, split into lines cpplint accepts.
-
-    Adjacent literals are joined by the compiler (see split_literal); no
-    literal is wider than width.
-    """
-    literals = split_literal(text, width, cpp_str)
-    if len(literals) <= 1:
-        return [f'{target} = {cpp_str(text)};']
-    return [f'{target} ='] + [f'  {literal}' for literal in literals[:-1]] + \
-        [f'  {literals[-1]};']
-
-
-def _default_lines(parameter: Parameter, ctype: str) -> list[str]:
-    """Return the statements that set ``default_value`` to the default."""
-    default = parameter.default
-    if isinstance(default, (tuple, list)):
-        element = parameter.type[:-2]
-        return [f'{ctype} default_value;'] + [
-            f'default_value.push_back({_cpp_value(v, element)});'
-            for v in default]
-    if isinstance(default, str):
-        return [f'{ctype} default_value;'] + string_lines('default_value', default)
-    return [f'const {ctype} default_value = '
-            f'{_cpp_value(parameter.default, parameter.type)};']
-
-
-def _range(parameter: Parameter) -> CppRange | None:
-    if parameter.range is None:
-        return None
-    integer = parameter.type == 'int'
-
-    def cast(value: float) -> str:
-        return f'INT64_C({int(value)})' if integer else repr(float(value))
-
-    return CppRange(
-        'integer_range' if integer else 'floating_point_range',
-        'rcl_interfaces::msg::IntegerRange' if integer
-        else 'rcl_interfaces::msg::FloatingPointRange',
-        cast(parameter.range.start), cast(parameter.range.end),
-        cast(parameter.range.step))
-
-
-def _parameter(parameter: Parameter) -> CppParameter:
-    ctype, accessor = PARAMETER_TYPES[parameter.type]
-    return CppParameter(
-        name=parameter.name, cpp_type=ctype, accessor=accessor,
-        default_lines=tuple(_default_lines(parameter, ctype)),
-        description_lines=tuple(string_lines('descriptor.description',
-                                             parameter.description)),
-        doc=parameter.description or f'The parameter {parameter.name}.',
-        read_only='true' if parameter.read_only else 'false',
-        range=_range(parameter))
-
-
 def _port(port: PortPlan) -> CppPort:
     type_ = cpp_type(port.type)
     delivers = port.kind.delivers
@@ -236,6 +157,9 @@ def _port(port: PortPlan) -> CppPort:
 def _signature(function: FunctionPlan) -> tuple[str, str]:
     """Return the return type and parameters of a function."""
     port = function.port
+    if function.validates is not None:
+        # an empty string accepts the value
+        return 'std::string', f'const {PARAMETER_TYPES[function.validates][0]} & value'
     if port is None or port.kind.delivers is None:
         return 'void', ''
     type_ = cpp_type(port.type)
@@ -266,7 +190,7 @@ def _activity(activity: ActivityPlan) -> CppActivity:
                        activity.description or f'The activity {activity.name}.')
 
 
-def _includes(plan: ComponentPlan) -> CppIncludes:
+def _includes(plan: ComponentPlan, has_rules: bool) -> CppIncludes:
     system = ['memory', 'string']
     ros = ['rclcpp/rclcpp.hpp', 'rclcpp_lifecycle/lifecycle_node.hpp',
            'rclcpp_lifecycle/lifecycle_publisher.hpp']
@@ -275,7 +199,8 @@ def _includes(plan: ComponentPlan) -> CppIncludes:
     if any(p.type.endswith('[]') for p in plan.parameters):
         system.append('vector')
     ros += sorted({header_name(p.type) for p in plan.ports})
-    ros += ['robmosys_runtime/component_node.hpp'] + sorted(
+    ros += ['robmosys_runtime/component_node.hpp'] + (
+        ['robmosys_runtime/parameters.hpp'] if has_rules else []) + sorted(
         {RUNTIME_HEADERS[e] for e in plan.entities if e in RUNTIME_HEADERS})
     return CppIncludes(tuple(sorted(set(system))), tuple(ros))
 
@@ -292,6 +217,7 @@ def spell_cpp(component: Component, plan: ComponentPlan,
     ports = tuple(_port(p) for p in plan.ports)
     functions = tuple(_function(cls, f) for f in plan.functions)
     activities = tuple(_activity(a) for a in plan.activities)
+    parameters = tuple(cpp_parameter(p, cls) for p in plan.parameters)
     client_packages = cpp_client_packages(component)
     # the parameter descriptors and the lifecycle states are used directly
     interfaces = unique(('rcl_interfaces', 'lifecycle_msgs') + plan.depends)
@@ -301,7 +227,7 @@ def spell_cpp(component: Component, plan: ComponentPlan,
         banner=banner, package=package, cls=cls, node_cls=plan.node_cls,
         node_header=f'{package}/{plan.node_cls}.hpp',
         description=plan.description or f'The component {cls}.',
-        includes=_includes(plan), ports=ports,
+        includes=_includes(plan, any(p.rule_lines for p in parameters)), ports=ports,
         publishers=tuple(p for p in ports if p.entity == Entity.PUBLISHER),
         action_servers=tuple(p for p in ports
                              if p.entity == Entity.ACTION_SERVER),
@@ -309,7 +235,8 @@ def spell_cpp(component: Component, plan: ComponentPlan,
         periodic=tuple(a for a in activities if a.period is not None),
         functions=functions,
         user_functions=tuple(f for f in functions if f.code is None),
-        parameters=tuple(_parameter(p) for p in plan.parameters),
+        parameters=parameters,
+        parameter_groups=cpp_parameter_groups(plan.parameters, parameters),
         lifecycle={t: f for t, f in plan.lifecycle if f}, threads=plan.threads,
         has_impl=plan.has_impl,
         find_packages=build_depends,
@@ -326,4 +253,5 @@ def spell_cpp(component: Component, plan: ComponentPlan,
             depend=build_depends,
             test=['ament_cmake_cpplint', 'ament_cmake_uncrustify',
                   'ament_cmake_gtest', 'ament_cmake_pytest']),
-        folders=folders or user_folders(component))
+        folders=folders or user_folders(component),
+        parameter_page=parameter_page(component, banner))

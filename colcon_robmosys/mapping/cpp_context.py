@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from typing import Mapping
 
 from colcon_robmosys.mapping.common import Banner, PackageXml
+from colcon_robmosys.mapping.parameters import ParameterPage
 from colcon_robmosys.mapping.userfiles import UserFolders
 
 
@@ -67,6 +68,27 @@ class CppParameter:
     doc: str
     read_only: str
     range: CppRange | None
+    #: the last part of its name: the accessor of its group
+    attr: str = ''
+    #: the statements that fill its ParameterRule, if it has rules
+    rule_lines: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class CppParameterGroup:
+    """The class of a group of parameters: typed access, nested by dotted names."""
+
+    #: its name in Parameters ('' for Parameters itself)
+    cls: str
+    doc: str
+    parameters: tuple[CppParameter, ...]
+    #: (member, class) of each subgroup
+    groups: tuple[tuple[str, str], ...]
+
+    @property
+    def initializers(self) -> list[str]:
+        """Return the member initializers of its constructor: subgroups, then the node."""
+        return [f'{member}(node)' for member, _ in self.groups] + ['node_(node)']
 
 
 @dataclass(frozen=True)
@@ -108,6 +130,8 @@ class CppComponent:
     functions: tuple[CppFunction, ...]
     user_functions: tuple[CppFunction, ...]
     parameters: tuple[CppParameter, ...]
+    #: the groups of Parameters, a subgroup first; then Parameters itself
+    parameter_groups: tuple[CppParameterGroup, ...]
     #: transition -> functions run on it (the transitions that run any)
     lifecycle: Mapping[str, tuple[str, ...]]
     threads: int
@@ -120,8 +144,20 @@ class CppComponent:
     package_xml: PackageXml
     #: where the user's files are, next to the model
     folders: UserFolders
+    #: the page of its parameters (doc/parameters.md), if it has any
+    parameter_page: ParameterPage | None = None
     #: the skeleton or the user's file (impl templates)
     skeleton: bool = False
+
+    @property
+    def rules(self) -> tuple[CppParameter, ...]:
+        """Return the parameters with rules beyond their descriptors."""
+        return tuple(p for p in self.parameters if p.rule_lines)
+
+    @property
+    def validates(self) -> bool:
+        """Tell whether functions of the component validate values (on configure too)."""
+        return any(line.startswith('rule.validate') for p in self.rules for line in p.rule_lines)
 
     @property
     def impl_paths(self) -> tuple[str, str]:

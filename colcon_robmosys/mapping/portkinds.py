@@ -60,6 +60,8 @@ class Returns(str, Enum):
     RESULT = 'result'
     #: whether an event fires for an activation
     CONDITION = 'condition'
+    #: why a parameter value is refused (validators, run on a change, not by a port)
+    PROBLEM = 'problem'
 
 
 @dataclass(frozen=True)

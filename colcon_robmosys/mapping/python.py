@@ -16,9 +16,11 @@ from typing import Any, Mapping
 from colcon_robmosys.mapping.common import banner_of, package_xml
 from colcon_robmosys.mapping.component import (
     ComponentPlan, FunctionPlan, PortPlan)
+from colcon_robmosys.mapping.parameters import (
+    group_class_names, parameter_groups, parameter_page)
 from colcon_robmosys.mapping.portkinds import Entity, Returns
 from colcon_robmosys.mapping.python_context import (
-    PyActivity, PyComponent, PyFunction, PyParameter, PyPort, PyRange,
+    PyActivity, PyComponent, PyFunction, PyParameter, PyParameterGroup, PyPort, PyRange,
     PyTransition)
 from colcon_robmosys.mapping.qos import resolve_qos
 from colcon_robmosys.mapping.userfiles import user_folders, UserFolders
@@ -53,7 +55,7 @@ EXEC_DEPENDS = ('rclpy', 'lifecycle_msgs', 'rcl_interfaces', 'robmosys_runtime')
 #: what a function gives back -> its annotation
 RETURN_TYPES = {
     Returns.NOTHING: 'None', Returns.ANSWER: '{type}.Response',
-    Returns.RESULT: '{type}.Result', Returns.CONDITION: 'bool',
+    Returns.RESULT: '{type}.Result', Returns.CONDITION: 'bool', Returns.PROBLEM: 'str',
 }
 
 #: model type -> (Python type, ParameterType name)
@@ -109,6 +111,8 @@ def _node_imports(names: dict[InterfaceRef, str], plan: ComponentPlan,
     for ref, local in names.items():
         alias = '' if local == ref.name else f' as {local}'
         _add(modules, f'{ref.package}.{ref.kind.value}', {f'{ref.name}{alias}'})
+    if any(_rule(p) for p in plan.parameters):
+        _add(modules, 'robmosys_runtime', {'ParameterRule', 'ParameterRules'})
     if plan.parameters:
         _add(modules, 'rcl_interfaces.msg', {'ParameterDescriptor'})
         for parameter in plan.parameters:
@@ -177,6 +181,8 @@ def _default_body(returns: str) -> str:
         return 'return True'
     if returns.endswith('.Response'):
         return 'return response'
+    if returns == 'str':
+        return "return ''"
     if returns != 'None':
         return f'return {returns}()'
     return ''
@@ -239,7 +245,34 @@ def _parameter(parameter: Parameter) -> PyParameter:
         # pep257 wants an imperative summary; the model's text follows it
         doc=_doc(f'Return the parameter {parameter.name}.',
                  parameter.description),
-        read_only=parameter.read_only, range=_range(parameter))
+        read_only=parameter.read_only, range=_range(parameter),
+        attr=parameter.path[-1], rule=_rule(parameter))
+
+
+def _rule(parameter: Parameter) -> tuple[str, ...]:
+    """Return the arguments of a parameter's ParameterRule, none without rules."""
+    args = []
+    if parameter.one_of is not None:
+        args.append(f'one_of={parameter.one_of!r}')
+    if parameter.size is not None:
+        args.append(f'size=({parameter.size.min}, {parameter.size.max})')
+    if parameter.validate:
+        args.append(f'validate=self.{parameter.validate}')
+    if parameter.on_change:
+        args.append(f'on_change={methods(parameter.on_change, 20, 10)}')
+    return tuple(args)
+
+
+def _groups(parameters: tuple[Parameter, ...], cls: str,
+            spelled: dict[str, PyParameter]) -> tuple[PyParameterGroup, ...]:
+    groups = parameter_groups(parameters)
+    names = group_class_names(groups, f'{cls}Parameters')
+    return tuple(PyParameterGroup(
+        names[g.path],
+        f'Typed access to the parameters {".".join(g.path)}.* of {cls}.' if g.path
+        else f'Typed access to the current parameter values of {cls}.',
+        tuple(spelled[p.name] for p in g.parameters),
+        tuple((sub, names[g.path + (sub,)]) for sub in g.groups)) for g in groups)
 
 
 def _function(function: FunctionPlan,
@@ -282,6 +315,7 @@ def spell_python(component: Component, plan: ComponentPlan,
                  {f'{ref.name}{alias}'})
     exec_depends = EXEC_DEPENDS + plan.depends
     banner = banner_of(component)
+    spelled = {p.name: _parameter(p) for p in plan.parameters}
     return PyComponent(
         banner=banner, package=package, cls=cls, node_cls=plan.node_cls,
         node_module=node_module,
@@ -298,7 +332,8 @@ def spell_python(component: Component, plan: ComponentPlan,
                          for a in plan.activities if a.period is not None),
         activity_names=tuple(a.name for a in plan.activities),
         functions=functions, user_functions=user_functions,
-        parameters=tuple(_parameter(p) for p in plan.parameters),
+        parameters=tuple(spelled.values()),
+        parameter_groups=_groups(plan.parameters, cls, spelled),
         lifecycle=tuple(PyTransition(t, methods(tuple(f), 16, len(repr(t)) + 2))
                         for t, f in plan.lifecycle if f),
         has_impl=plan.has_impl,
@@ -307,4 +342,5 @@ def spell_python(component: Component, plan: ComponentPlan,
             banner, component.info,
             buildtool=['ament_cmake', 'ament_cmake_python'],
             exec_=exec_depends, test=['ament_cmake_pytest']),
-        folders=folders or user_folders(component))
+        folders=folders or user_folders(component),
+        parameter_page=parameter_page(component, banner))

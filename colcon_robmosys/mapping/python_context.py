@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from colcon_robmosys.mapping.common import Banner, PackageXml
+from colcon_robmosys.mapping.parameters import ParameterPage
 from colcon_robmosys.mapping.userfiles import UserFolders
 
 
@@ -67,6 +68,21 @@ class PyParameter:
     doc: str
     read_only: bool
     range: PyRange | None
+    #: the last part of its name: the attribute of its group
+    attr: str = ''
+    #: the arguments of its ParameterRule (one_of, size, validate, on_change), if any
+    rule: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class PyParameterGroup:
+    """The class of a group of parameters: typed access, nested by dotted names."""
+
+    cls: str
+    doc: str
+    parameters: tuple[PyParameter, ...]
+    #: (attribute, class) of each subgroup
+    groups: tuple[tuple[str, str], ...]
 
 
 @dataclass(frozen=True)
@@ -110,6 +126,8 @@ class PyComponent:
     functions: tuple[PyFunction, ...]
     user_functions: tuple[PyFunction, ...]
     parameters: tuple[PyParameter, ...]
+    #: subgroups first, the class of the node's own parameters last
+    parameter_groups: tuple[PyParameterGroup, ...]
     lifecycle: tuple[PyTransition, ...]
     has_impl: bool
     #: packages it builds against (its interfaces), and runs with
@@ -118,7 +136,19 @@ class PyComponent:
     package_xml: PackageXml
     #: where the user's files are, next to the model
     folders: UserFolders
+    #: the page of its parameters (doc/parameters.md), if it has any
+    parameter_page: ParameterPage | None = None
     skeleton: bool = False
+
+    @property
+    def rules(self) -> tuple[PyParameter, ...]:
+        """Return the parameters with rules beyond their descriptors."""
+        return tuple(p for p in self.parameters if p.rule)
+
+    @property
+    def validates(self) -> bool:
+        """Tell whether functions of the component validate values (on configure too)."""
+        return any(a.startswith('validate=') for p in self.parameters for a in p.rule)
 
     @property
     def port_names(self) -> list[str]:

@@ -18,6 +18,7 @@ from colcon_robmosys.mapping.cpp import RUNTIME_PACKAGE
 from colcon_robmosys.mapping.launch import (
     launch_files, LaunchFile, PARAMS_FILE, SystemNode)
 from colcon_robmosys.mapping.names import connection_name
+from colcon_robmosys.mapping.parameters import NODE_PARAMETERS
 from colcon_robmosys.mapping.portkinds import port_kind
 from colcon_robmosys.mapping.qos import override_parameters
 from colcon_robmosys.model.parameters import freeze_parameter_value
@@ -187,9 +188,18 @@ def _plugin(component: Component) -> str:
 def _parameters(system: System, components: dict[str, Component],
                 topics: dict[tuple[str, str], str]) -> tuple[NodeParameters, ...]:
     nodes = []
+    if system.parameters:
+        # '/**' first: rcl takes the entries of a node in the order of the
+        # file, so a node's own values, later, win
+        types = {p.name: p.type for c in components.values() for p in c.parameters}
+        types.update(NODE_PARAMETERS)
+        nodes.append(NodeParameters('/**', tuple(
+            (name, freeze_parameter_value(types[name], value))
+            for name, value in system.parameters)))
     for instance in system.instances:
         component = components[instance.name]
-        types = {p.name: p.type for p in component.parameters}
+        types = dict(NODE_PARAMETERS)
+        types.update((p.name, p.type) for p in component.parameters)
         # ROS 2 refuses an integer for a parameter declared as double
         values = [(name, freeze_parameter_value(types[name], value))
                   for name, value in instance.parameters]

@@ -96,9 +96,11 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
             connections.append(Connection(ref(ends[0]), ref(ends[-1]) if len(ends) == 2
                                           else None, body.get('topic'),
                                           self.at(cpath, key=True)))
+        everywhere = tuple(raw.get('parameters', {}).items())
         return System(info, name, tuple(instances), tuple(connections),
                       self.at(path + ('package',)),
-                      raw.get('processes', 'per_instance'), tuple(subsystems))
+                      raw.get('processes', 'per_instance'), tuple(subsystems), everywhere,
+                      tuple(self.at(path + ('parameters', n), key=True) for n, _ in everywhere))
 
     def _qos_overrides(self, path: NodePath, raw: RawData) -> tuple[QoSOverride, ...]:
         """Return the QoS an instance gives its ports (``qos: {port: {policy: value}}``)."""

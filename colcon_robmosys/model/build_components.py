@@ -7,16 +7,18 @@ from __future__ import annotations
 
 import ast
 import textwrap
+from typing import Any
 
 from colcon_robmosys.errors import Diagnostic, Location
+from colcon_robmosys.model import schema_messages
 from colcon_robmosys.model.build_base import BuilderBase, choices
 from colcon_robmosys.model.fieldtypes import parse_interface, TypeNameError
 from colcon_robmosys.model.loader import NodePath, RawData
 from colcon_robmosys.model.parameters import (
-    freeze_parameter_value, parameter_value_problem, PARAMETER_ZERO)
+    freeze_parameter_value, parameter_value_problem, PARAMETER_ZERO, rule_problem)
 from colcon_robmosys.model.types import (
     Activity, Component, Function, Language, LIFECYCLE_TRANSITIONS, Parameter,
-    ParameterRange, Pattern, PATTERN_INTERFACE, Port, QoS, Role)
+    ParameterRange, ParameterSize, Pattern, PATTERN_INTERFACE, Port, QoS, Role)
 
 
 class ComponentBuilder(BuilderBase):
@@ -70,6 +72,13 @@ class ComponentBuilder(BuilderBase):
                 lifecycle.append((transition, tuple(listed)))
         parameters = tuple(self._parameter(path + ('parameters', n), n, body)
                            for n, body in raw.get('parameters', {}).items())
+        for n, body in raw.get('parameters', {}).items():
+            for key in ('validate', 'on_change'):
+                listed, kpath = body.get(key, ()), path + ('parameters', n, key)
+                if not isinstance(listed, str):
+                    check_functions(kpath, listed)
+                elif listed not in function_names:
+                    self.error(kpath, f"unknown function '{listed}'" + choices(function_names))
         self._check_member_names(path, ports, functions, activities,
                                  parameters)
         external = raw.get('external') or {}
@@ -103,9 +112,17 @@ class ComponentBuilder(BuilderBase):
                                f'{owners[item.name]} of this component',
                                key=True)
                 owners.setdefault(item.name, section[:-1].replace('ie', 'y'))
+        groups = {'.'.join(p.path[:i]): p.name for p in parameters
+                  for i in range(1, len(p.path))}
         for parameter in parameters:
-            self.check_name(path + ('parameters', parameter.name),
-                            'parameter', parameter.name)
+            ppath = path + ('parameters', parameter.name)
+            for part in parameter.path:
+                # (a dotted name: each part is a name of the generated code)
+                self.check_name(ppath, 'parameter', part)
+            if parameter.name in groups:
+                self.error(ppath, f"parameter '{parameter.name}' is also the group of "
+                           f"'{groups[parameter.name]}': typed access cannot have both",
+                           key=True)
 
     def _port(self, path: NodePath, name: str, raw: RawData) -> Port:
         self.check_name(path, 'port', name)
@@ -157,7 +174,7 @@ class ComponentBuilder(BuilderBase):
                 f'{exc.msg}'))
 
     def _parameter(self, path: NodePath, name: str, raw: RawData) -> Parameter:
-        type_name = raw['type']
+        type_name, on_change = raw['type'], raw.get('on_change', ())
         default = raw.get('default', PARAMETER_ZERO[type_name])
         if 'default' in raw:
             problem = parameter_value_problem(type_name, default)
@@ -188,12 +205,79 @@ class ComponentBuilder(BuilderBase):
                     self.error(path + ('default',), f"parameter '{name}': the "
                                f'default {default} is out of its range '
                                f'[{start}, {end}]')
-        return Parameter(
+        parameter = Parameter(
             name, type_name, freeze_parameter_value(type_name, default),
             raw.get('description', ''), raw.get('read_only', False), range_,
-            self.at(path, key=True))
+            self.at(path, key=True), self._one_of(path, name, raw),
+            self._size(path, name, raw), raw.get('validate'),
+            tuple([on_change] if isinstance(on_change, str) else on_change),
+            self.at(path + ('validate',)) if 'validate' in raw else None,
+            self.at(path + ('on_change',)) if on_change else None)
+        if parameter.read_only and on_change:
+            self.error(path + ('on_change',), f"parameter '{name}': 'on_change' has no "
+                       'meaning for a read-only parameter: it never changes after start',
+                       key=True)
+        if 'default' in raw and (parameter.one_of or parameter.size) and \
+                not parameter_value_problem(type_name, default):
+            problem = rule_problem(parameter, default)
+            if problem:
+                self.error(path + ('default',), f"parameter '{name}': default {problem}")
+        return parameter
+
+    def _one_of(self, path: NodePath, name: str, raw: RawData) -> tuple[Any, ...] | None:
+        if 'one_of' not in raw:
+            return None
+        type_name, values = raw['type'], raw['one_of']
+        element = type_name.removesuffix('[]')
+        if element == 'bool':
+            self.error(path + ('one_of',), f"parameter '{name}': 'one_of' has no meaning "
+                       f'for a {type_name} parameter (true and false are all there is)',
+                       key=True)
+            return None
+        for index, value in enumerate(values):
+            kind = _JSON_KINDS.get(element)
+            if kind is not None and not _is_kind(value, kind):
+                # the words of the schema, which finds this first
+                self.error(path + ('one_of', index), f"parameter '{name}': item "
+                           f"{index + 1} of 'one_of' must be {schema_messages.kinds(kind)}, "
+                           f'not {schema_messages.describe(value)}')
+                return None
+            problem = parameter_value_problem(element, value) if element != 'byte' else \
+                parameter_value_problem('byte[]', [value])
+            if problem:
+                self.error(path + ('one_of', index), f"parameter '{name}': in 'one_of', "
+                           f'{problem}')
+                return None
+        return tuple(freeze_parameter_value(element, v) for v in values)
+
+    def _size(self, path: NodePath, name: str, raw: RawData) -> ParameterSize | None:
+        if 'size' not in raw:
+            return None
+        type_name, bounds = raw['type'], raw['size']
+        low, high = bounds.get('min', 0), bounds.get('max')
+        if type_name != 'string' and not type_name.endswith('[]'):
+            self.error(path + ('size',), f"parameter '{name}': 'size' is only for string "
+                       f'and array parameters (this one is {type_name})', key=True)
+            return None
+        if high is not None and low > high:
+            self.error(path + ('size',), f"parameter '{name}': the size's min ({low}) "
+                       f'is greater than its max ({high})')
+            return None
+        return ParameterSize(low, high)
 
     # systems ------------------------------------------------------------
+
+
+#: element type of a parameter -> the JSON kind the schema wants of its one_of values
+_JSON_KINDS = {'string': 'string', 'int': 'integer', 'double': 'number'}
+
+
+def _is_kind(value: Any, kind: str) -> bool:
+    if kind == 'string':
+        return isinstance(value, str)
+    if isinstance(value, bool):
+        return False
+    return isinstance(value, int) or kind == 'number' and isinstance(value, float)
 
 
 def _strip_kind(text: str) -> str:

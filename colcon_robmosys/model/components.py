@@ -90,8 +90,16 @@ class ParameterRange:
 
 
 @dataclass(frozen=True)
+class ParameterSize:
+    """How many characters (string) or elements (array) a parameter may hold."""
+
+    min: int
+    max: int | None
+
+
+@dataclass(frozen=True)
 class Parameter:
-    """A parameter of a component."""
+    """A parameter of a component; a dotted name is a parameter of a group."""
 
     name: str
     type: str
@@ -100,6 +108,21 @@ class Parameter:
     read_only: bool
     range: ParameterRange | None
     location: Location
+    #: the values it may take (of an array: its elements)
+    one_of: tuple[Any, ...] | None = None
+    size: ParameterSize | None = None
+    #: the function that validates a new value: it returns why it is refused, or nothing
+    validate: str | None = None
+    #: the functions run after a change of its value
+    on_change: tuple[str, ...] = ()
+    #: where ``validate`` and ``on_change`` stand
+    validate_location: Location | None = None
+    on_change_location: Location | None = None
+
+    @property
+    def path(self) -> tuple[str, ...]:
+        """Return the groups of the name, then its last part."""
+        return tuple(self.name.split('.'))
 
 
 @dataclass(frozen=True)

@@ -8,6 +8,8 @@ from __future__ import annotations
 import math
 from typing import Any, Callable
 
+from colcon_robmosys.model.components import Parameter
+
 
 PARAMETER_KINDS: dict[str, Callable[[Any], bool]] = {
     'bool': lambda v: isinstance(v, bool),
@@ -48,3 +50,35 @@ def freeze_parameter_value(type_name: str, value: Any) -> Any:
     if type_name.startswith('double') and isinstance(value, int):
         return float(value)
     return value
+
+
+def _listed(values: Any) -> str:
+    return ', '.join(repr(v) for v in values)
+
+
+def rule_problem(parameter: Parameter, value: Any) -> str | None:
+    """Return why a value of the parameter's type breaks its range, one_of or size.
+
+    The generated nodes refuse such a value with the same words at run time
+    (robmosys_runtime's parameters module and parameters.hpp).
+    """
+    bounds = parameter.range
+    if bounds is not None and not parameter.type.endswith('[]') and \
+            not bounds.start <= value <= bounds.end:
+        return f'{value} is out of the range [{bounds.start}, {bounds.end}]'
+    if parameter.one_of is not None:
+        if not parameter.type.endswith('[]'):
+            if value not in parameter.one_of:
+                return f'{value!r} is not one of {_listed(parameter.one_of)}'
+        else:
+            stray = next((v for v in value if v not in parameter.one_of), None)
+            if stray is not None:
+                return f'element {stray!r} is not one of {_listed(parameter.one_of)}'
+    size = parameter.size
+    if size is not None:
+        unit = 'characters' if parameter.type == 'string' else 'elements'
+        if len(value) < size.min:
+            return f'{value!r} has {len(value)} {unit}, fewer than {size.min}'
+        if size.max is not None and len(value) > size.max:
+            return f'{value!r} has {len(value)} {unit}, more than {size.max}'
+    return None

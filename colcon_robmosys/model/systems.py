@@ -132,6 +132,9 @@ class System:
     #: 'per_instance' or 'shared' (the Python instances of a host in one process)
     processes: str = 'per_instance'
     subsystems: tuple[Subsystem, ...] = ()
+    #: values for every instance (the /** entry of the parameter file), and where each stands
+    parameters: tuple[tuple[str, Any], ...] = ()
+    parameter_locations: tuple[Location, ...] = ()
 
     @property
     def package(self) -> str:

@@ -16,8 +16,8 @@ from colcon_robmosys.model.base import (
     InterfaceKind, InterfaceRef, Language, LIFECYCLE_TRANSITIONS, Maintainer,
     PackageInfo, Pattern, PATTERN_INTERFACE, PRIMITIVE_TYPES, Role)
 from colcon_robmosys.model.components import (
-    Activity, Component, Function, Parameter, ParameterRange, ParameterValue,
-    Port, QoS)
+    Activity, Component, Function, Parameter, ParameterRange, ParameterSize,
+    ParameterValue, Port, QoS)
 from colcon_robmosys.model.definitions import (
     Action, CommunicationObject, Constant, Event, Field, FieldType, Query,
     ServiceDefinition, Structure)
@@ -29,8 +29,8 @@ __all__ = [
     'Constant', 'Event', 'Field', 'FieldType', 'Function', 'Instance',
     'InterfaceKind', 'InterfaceRef', 'Language', 'LIFECYCLE_TRANSITIONS',
     'Maintainer', 'Model', 'model_key', 'ModelFile', 'PackageInfo', 'Parameter',
-    'ParameterRange', 'ParameterValue', 'Pattern', 'PATTERN_INTERFACE', 'Port',
-    'PortRef', 'PRIMITIVE_TYPES', 'QoS', 'QoSOverride', 'Query', 'Role',
+    'ParameterRange', 'ParameterSize', 'ParameterValue', 'Pattern', 'PATTERN_INTERFACE',
+    'Port', 'PortRef', 'PRIMITIVE_TYPES', 'QoS', 'QoSOverride', 'Query', 'Role',
     'ServiceDefinition', 'Structure', 'Subsystem', 'System', 'Workspace',
 ]
 

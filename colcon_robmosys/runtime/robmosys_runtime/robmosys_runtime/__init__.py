@@ -11,11 +11,13 @@ call queries and actions blocking or asynchronously (see docs/runtime.md).
 from robmosys_runtime.events import copy_fields, EventActivation, EventClient, EventServer
 from robmosys_runtime.main import executor_threads, run
 from robmosys_runtime.node import Activity, ComponentNode
+from robmosys_runtime.parameters import ParameterRule, ParameterRules
 from robmosys_runtime.ports import ActionClientPort, QueryClient, wait_for
 
 __version__ = '0.1.0'
 
 __all__ = [
     'ActionClientPort', 'Activity', 'ComponentNode', 'EventActivation', 'EventClient',
-    'EventServer', 'QueryClient', 'copy_fields', 'executor_threads', 'run', 'wait_for',
+    'EventServer', 'ParameterRule', 'ParameterRules', 'QueryClient', 'copy_fields',
+    'executor_threads', 'run', 'wait_for',
 ]

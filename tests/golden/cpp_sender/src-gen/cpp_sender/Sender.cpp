@@ -31,8 +31,24 @@ rclcpp::QoS qos_sMap()
 
 }  // namespace
 
-Sender::Parameters::Parameters(rclcpp_lifecycle::LifecycleNode & node)
+Sender::Parameters::ShapeGroup::ShapeGroup(rclcpp_lifecycle::LifecycleNode & node)
 : node_(node)
+{
+}
+
+std::string Sender::Parameters::ShapeGroup::kind() const
+{
+  return node_.get_parameter("shape.kind").as_string();
+}
+
+int64_t Sender::Parameters::ShapeGroup::max_cells() const
+{
+  return node_.get_parameter("shape.max_cells").as_int();
+}
+
+Sender::Parameters::Parameters(rclcpp_lifecycle::LifecycleNode & node)
+: shape(node),
+  node_(node)
 {
 }
 
@@ -60,12 +76,39 @@ Sender::Sender(
   const std::string & node_name,
   const rclcpp::NodeOptions & options)
 : robmosys_runtime::ComponentNode(node_name, options),
-  params_(*this)
+  params_(*this),
+  rules_(*this)
 {
   announce(
     "cpp_sender", {
       "sMap",
     });
+  {
+    // before the declarations: a value given at start is checked too
+    robmosys_runtime::ParameterRule<std::string> rule;
+    rule.min_size = 1u;
+    rule.max_size = 64u;
+    rules_.add("frame", rule);
+  }
+  {
+    // before the declarations: a value given at start is checked too
+    robmosys_runtime::ParameterRule<std::string> rule;
+    rule.one_of.emplace();
+    std::string value;
+    value = "rectangle";
+    rule.one_of->push_back(value);
+    value = "square";
+    rule.one_of->push_back(value);
+    rule.on_change.push_back(std::bind(&Sender::fShapeChanged, this));
+    rules_.add("shape.kind", rule);
+  }
+  {
+    // before the declarations: a value given at start is checked too
+    robmosys_runtime::ParameterRule<int64_t> rule;
+    rule.validate = std::bind(
+      &Sender::vMaxCells, this, std::placeholders::_1);
+    rules_.add("shape.max_cells", rule);
+  }
   {
     rcl_interfaces::msg::ParameterDescriptor descriptor;
     descriptor.description = "Cells along x.";
@@ -98,6 +141,22 @@ Sender::Sender(
     default_value = "map";
     declare_parameter<std::string>("frame", default_value, descriptor);
   }
+  {
+    rcl_interfaces::msg::ParameterDescriptor descriptor;
+    descriptor.description = "The shape of the maps: rectangle | square.";
+    descriptor.read_only = false;
+    std::string default_value;
+    default_value = "rectangle";
+    declare_parameter<std::string>("shape.kind", default_value, descriptor);
+  }
+  {
+    rcl_interfaces::msg::ParameterDescriptor descriptor;
+    descriptor.description = "At most this many cells.";
+    descriptor.read_only = false;
+    const int64_t default_value = INT64_C(4096);
+    declare_parameter<int64_t>("shape.max_cells", default_value, descriptor);
+  }
+  rules_.start();
   add_activity("Send");
 }
 
@@ -113,6 +172,8 @@ const Sender::Parameters & Sender::params() const
 
 void Sender::create_ports()
 {
+  // the validators of the component, over the values of the moment
+  rules_.check_current();
   keep_publisher(
     sMap, create_publisher<simple_msgs::msg::Map>(
       "sMap", qos_sMap(), publisher_options()));
@@ -129,6 +190,19 @@ void Sender::fSending()
   map.ogm.height = static_cast<uint32_t>(params().height());
   RCLCPP_INFO(get_logger(), "Sending map %ux%u", map.ogm.width, map.ogm.height);
   sMap->publish(map);
+}
+
+void Sender::fShapeChanged()
+{
+  RCLCPP_INFO(get_logger(), "shape is now %s", params().shape.kind().c_str());
+}
+
+std::string Sender::vMaxCells(const int64_t & value)
+{
+  if (value < params().width() * params().height()) {
+    return "fewer than width x height cells";
+  }
+  return "";
 }
 
 int run_Sender(int argc, char * argv[])

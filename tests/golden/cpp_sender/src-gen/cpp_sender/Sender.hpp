@@ -13,6 +13,7 @@
 #include "rclcpp_lifecycle/lifecycle_publisher.hpp"
 #include "simple_msgs/msg/map.hpp"
 #include "robmosys_runtime/component_node.hpp"
+#include "robmosys_runtime/parameters.hpp"
 
 namespace cpp_sender
 {
@@ -28,6 +29,22 @@ public:
   class Parameters
   {
 public:
+    /// Typed access to the parameters shape.*.
+    class ShapeGroup
+    {
+public:
+      explicit ShapeGroup(rclcpp_lifecycle::LifecycleNode & node);
+
+      /// The shape of the maps: rectangle | square.
+      std::string kind() const;
+
+      /// At most this many cells.
+      int64_t max_cells() const;
+
+private:
+      rclcpp_lifecycle::LifecycleNode & node_;
+    };
+
     explicit Parameters(rclcpp_lifecycle::LifecycleNode & node);
 
     /// Cells along x.
@@ -38,6 +55,9 @@ public:
 
     /// Frame of the maps.
     std::string frame() const;
+
+    /// The parameters of the group shape.
+    ShapeGroup shape;
 
 private:
     rclcpp_lifecycle::LifecycleNode & node_;
@@ -61,11 +81,19 @@ protected:
   /// Send a map of width × height cells.
   virtual void fSending();
 
+  /// Say which shape the maps have now.
+  virtual void fShapeChanged();
+
+  /// Refuse a bound below the cells of one map.
+  virtual std::string vMaxCells(const int64_t & value);
+
   /// Required send port (simple_msgs/msg/Map).
   rclcpp_lifecycle::LifecyclePublisher<simple_msgs::msg::Map>::SharedPtr sMap;
 
 private:
   Parameters params_;
+  /// The rules of the parameters beyond their descriptors, and their on_change functions.
+  robmosys_runtime::ParameterRules rules_;
 };
 
 /// Spin Sender on a multi-threaded executor (at least 2 threads) until

@@ -1,0 +1,89 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""Rules on the parameter values a system sets: per instance, and for every instance.
+
+A value must fit the parameter's type and its range, ``one_of`` and ``size``;
+the functions of a component that validate values (``validate``) are the
+user's code and run in the node only (on every change, and on configure).
+"""
+
+from __future__ import annotations
+
+from typing import Any, Iterable
+
+from colcon_robmosys.errors import Diagnostic, Location
+from colcon_robmosys.mapping.parameters import NODE_PARAMETERS
+from colcon_robmosys.model.parameters import parameter_value_problem, rule_problem
+from colcon_robmosys.model.types import Component, Instance, Parameter, System
+
+
+def _value_problem(parameter: Parameter, value: Any) -> str | None:
+    return parameter_value_problem(parameter.type, value) or \
+        rule_problem(parameter, value)
+
+
+def override_problems(instance: Instance, component: Component) -> list[Diagnostic]:
+    """Return what is wrong with the values a system gives an instance."""
+    problems = []
+    parameters = {p.name: p for p in component.parameters}
+    locations = instance.parameter_locations or \
+        (instance.location,) * len(instance.parameters)
+    for (name, value), location in zip(instance.parameters, locations):
+        parameter = parameters.get(name)
+        if parameter is None:
+            if name in NODE_PARAMETERS:
+                problem = parameter_value_problem(NODE_PARAMETERS[name], value)
+                if problem:
+                    problems.append(Diagnostic(
+                        location, f"instance '{instance.name}', parameter '{name}': {problem}"))
+                continue
+            known = ', '.join(sorted(parameters)) or 'none'
+            problems.append(Diagnostic(
+                location, f"instance '{instance.name}': component '{component.name}' has "
+                f"no parameter '{name}' (its parameters: {known})"))
+            continue
+        problem = _value_problem(parameter, value)
+        if problem:
+            problems.append(Diagnostic(
+                location, f"instance '{instance.name}', parameter '{name}': {problem}"))
+    return problems
+
+
+def everywhere_problems(system: System, components: Iterable[tuple[Instance, Component]]
+                        ) -> list[Diagnostic]:
+    """Return what is wrong with the values a system sets for every instance.
+
+    A value goes to every node of the system (the ``/**`` entry of its
+    parameter file); nodes that do not declare the parameter ignore it, as
+    ROS 2 does. At least one instance must have it, with a fitting value.
+    """
+    problems = []
+    pairs = list(components)
+    locations = system.parameter_locations or (system.location,) * len(system.parameters)
+    for (name, value), location in zip(system.parameters, locations):
+        types = {NODE_PARAMETERS[name]: 'every ROS 2 node'} if name in NODE_PARAMETERS else {}
+        problem = parameter_value_problem(NODE_PARAMETERS[name], value) if types else None
+        for instance, component in pairs:
+            parameter = next((p for p in component.parameters if p.name == name), None)
+            if parameter is None or problem:
+                continue
+            types.setdefault(parameter.type, f"instance '{instance.name}'")
+            problem = _value_problem(parameter, value)
+            if problem:
+                problem += f" (for instance '{instance.name}')"
+        if problem:
+            problems.append(_everywhere(location, name, problem))
+        elif len(types) > 1:
+            # one value in the file: ROS 2 refuses an int for a double and the reverse
+            problems.append(_everywhere(location, name, 'its types differ: ' + ', '.join(
+                f'{type_} in {where}' for type_, where in types.items())))
+        elif not types:
+            problems.append(_everywhere(
+                location, name, 'no instance of the system has it (nor is it a parameter '
+                'of every ROS 2 node)'))
+    return problems
+
+
+def _everywhere(location: Location, name: str, problem: str) -> Diagnostic:
+    return Diagnostic(location, f"parameter '{name}' for every instance: {problem}")

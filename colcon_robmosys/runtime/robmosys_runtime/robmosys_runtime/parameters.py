@@ -1,0 +1,132 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""
+The rules of a component's parameters beyond their descriptors, and what runs on a change.
+
+ROS 2 checks a parameter's type, range and read-only flag itself (the
+ParameterDescriptor); a parameter's other rules are checked here, in the
+node's on-set-parameters callback: the values it may take (``one_of``), its
+size (characters of a string, elements of an array), and the function of the
+component that validates it. A value that breaks one is refused with the
+reason (SetParametersResult successful=false), at start too: a parameter
+file's value that breaks a rule stops the node. The component's functions run
+after an accepted change (``on_change``) see the new value.
+
+The words of the reasons are those of colcon-robmosys's own checks of models.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import traceback
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+
+from rcl_interfaces.msg import SetParametersResult
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+
+#: A function of the component that validates a value: why it is refused, or '' or None.
+Validator = Callable[[Any], Optional[str]]
+
+
+@dataclass(frozen=True)
+class ParameterRule:
+    """What a value of one parameter must be, and what runs after it changes."""
+
+    #: the values it may take; of an array, those its elements may take
+    one_of: Optional[Tuple[Any, ...]] = None
+    #: (min, max) characters of a string or elements of an array; max None: no bound
+    size: Optional[Tuple[int, Optional[int]]] = None
+    validate: Optional[Validator] = None
+    on_change: Sequence[Callable[[], Any]] = ()
+
+
+def _listed(values: Sequence[Any]) -> str:
+    return ', '.join(repr(v) for v in values)
+
+
+def rule_problem(rule: ParameterRule, value: Any) -> Optional[str]:
+    """Return why a value breaks the rule's one_of or size, None if it does not."""
+    scalar = isinstance(value, str) or not hasattr(value, '__iter__')
+    if not scalar:
+        # rclpy gives arrays as array.array, bytes as a list of one-byte bytes
+        value = [v[0] if isinstance(v, bytes) else v for v in value]
+    if rule.one_of is not None:
+        if scalar:
+            if value not in rule.one_of:
+                return f'{value!r} is not one of {_listed(rule.one_of)}'
+        else:
+            stray = [v for v in value if v not in rule.one_of]
+            if stray:
+                return f'element {stray[0]!r} is not one of {_listed(rule.one_of)}'
+    if rule.size is not None:
+        low, high = rule.size
+        unit = 'characters' if isinstance(value, str) else 'elements'
+        if len(value) < low:
+            return f'{value!r} has {len(value)} {unit}, fewer than {low}'
+        if high is not None and len(value) > high:
+            return f'{value!r} has {len(value)} {unit}, more than {high}'
+    return None
+
+
+class ParameterRules:
+    """
+    The rules of a node's parameters, checked in its on-set-parameters callback.
+
+    Create it before the parameters are declared, so that a value given at
+    start breaks no rule either, and call :meth:`start` once they are. The
+    component's validators run from then on (they are methods of the user's
+    class, which may need what its constructor sets up), and again on
+    configure over the values of the moment (:meth:`check_current`).
+    """
+
+    def __init__(self, node: Node, rules: Dict[str, ParameterRule]) -> None:
+        self._node = node
+        self._rules = dict(rules)
+        self._started = False
+        node.add_on_set_parameters_callback(self._on_set)
+
+    def start(self) -> None:
+        """Run the validators on every change from now on, and the on_change functions."""
+        self._started = True
+        self._node.add_post_set_parameters_callback(self._after_set)
+
+    def problem(self, name: str, value: Any) -> Optional[str]:
+        """Return why a parameter may not take a value: its rules, then its validator."""
+        rule = self._rules.get(name)
+        if rule is None:
+            return None
+        try:
+            problem = rule_problem(rule, value)
+        except TypeError:
+            return None  # a value of another type: the descriptor refuses it
+        if problem is None and rule.validate is not None and self._started:
+            problem = rule.validate(value) or None
+        return None if problem is None else f"parameter '{name}': {problem}"
+
+    def check_current(self) -> None:
+        """Raise ValueError if a current value is refused (on configure)."""
+        for name in self._rules:
+            problem = self.problem(name, self._node.get_parameter(name).value)
+            if problem is not None:
+                raise ValueError(problem)
+
+    def _on_set(self, parameters: List[Parameter]) -> SetParametersResult:
+        for parameter in parameters:
+            try:
+                problem = self.problem(parameter.name, parameter.value)
+            except Exception as error:  # noqa: B902 - a failing validator refuses the value
+                problem = f"parameter '{parameter.name}': its validator failed: {error!r}"
+            if problem is not None:
+                return SetParametersResult(successful=False, reason=problem)
+        return SetParametersResult(successful=True)
+
+    def _after_set(self, parameters: List[Parameter]) -> None:
+        for parameter in parameters:
+            rule = self._rules.get(parameter.name)
+            for function in rule.on_change if rule is not None else ():
+                try:
+                    function()
+                except Exception:  # noqa: B902 - a failing function must not stop the node
+                    self._node.get_logger().error(
+                        f'on_change of {parameter.name} failed:\n' + traceback.format_exc())
