@@ -17,7 +17,7 @@ from colcon_robmosys.errors import Diagnostic
 
 #: the tool's name in every report; also what tells a report of ours
 TOOL = 'colcon-robmosys'
-#: the host of the model format's schema ($id of robmosys.schema.json)
+#: the host of the model format's schema ($id of robmosys-1.schema.json)
 TOOL_URI = 'https://colcon-robmosys.org'
 #: the version of our own JSON format
 JSON_VERSION = 1
