@@ -5,7 +5,8 @@
 
 from __future__ import annotations
 
-from colcon_robmosys.model import names
+from colcon_robmosys.model import names, rosidl
+from colcon_robmosys.model.base import InterfaceKind
 from colcon_robmosys.model.build_base import BuilderBase
 from colcon_robmosys.model.fieldtypes import (
     interface_comment_problem, parse_field_type, TypeNameError, value_problem)
@@ -25,7 +26,9 @@ class DefinitionBuilder(BuilderBase):
         seen: dict[str, str] = {}
 
         def named(section: str, name: str) -> None:
-            if not names.INTERFACE_TYPE_RE.match(name):
+            kind = InterfaceKind.MSG if section == 'communication_objects' else \
+                InterfaceKind.SRV if section == 'queries' else InterfaceKind.ACTION
+            if not rosidl.is_interface_name(name, kind):
                 self.error(path + (section, name),
                            f"'{name}' is not a valid interface name: "
                            'CamelCase, starting with a capital letter',
@@ -111,7 +114,7 @@ class DefinitionBuilder(BuilderBase):
         fields = []
         for name, spec in raw.get('fields', {}).items():
             fpath = path + ('fields', name)
-            if not names.FIELD_RE.match(name):
+            if not rosidl.is_field_name(name):
                 self.error(fpath, f"field '{name}' is not a valid field name: "
                            'lower case letters, digits and single '
                            'underscores, starting with a letter', key=True)
@@ -140,7 +143,7 @@ class DefinitionBuilder(BuilderBase):
         constants = []
         for name, spec in raw.get('constants', {}).items():
             cpath = path + ('constants', name)
-            if not names.CONSTANT_RE.match(name):
+            if not rosidl.is_constant_name(name):
                 self.error(cpath, f"constant '{name}' is not a valid constant "
                            'name: upper case letters, digits and single '
                            'underscores, starting with a letter', key=True)
