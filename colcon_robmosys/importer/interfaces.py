@@ -75,12 +75,10 @@ def import_interfaces(packages: list[str], index: InterfaceIndex, *,
 
 
 def _listing(index: InterfaceIndex, package: str) -> list[str] | None:
-    for prefix in index.prefixes:
-        marker = prefix / 'share' / 'ament_index' / 'resource_index' / RESOURCE_TYPE / package
-        if marker.is_file():
-            return [line.strip() for line in marker.read_text(encoding='utf-8').splitlines()
-                    if line.strip()]
-    return None
+    found = index.resource(RESOURCE_TYPE, package)
+    if found is None:
+        return None
+    return [line.strip() for line in found[0].splitlines() if line.strip()]
 
 
 def _package_model(package: str, share: Path, listing: list[str],

@@ -23,6 +23,8 @@ writes from these: it has nothing to say about .msg syntax, and loads lark.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
 from colcon_robmosys.model.base import InterfaceKind
 
@@ -53,6 +55,11 @@ def require() -> None:
     """Raise the error of a missing rosidl_adapter, if it is missing."""
     if MISSING is not None:
         raise RobmosysError([Diagnostic(MISSING_LOCATION, MISSING)])
+
+
+def parser_source() -> bytes:
+    """Return the source of rosidl_adapter's parser, or nothing if it is missing."""
+    return b'' if MISSING is not None else Path(adapter.__file__).read_bytes()
 
 
 def parse_type(text: str, package: str) -> adapter.Type:
