@@ -11,6 +11,7 @@ error there, and a rule of the check.
 from __future__ import annotations
 
 from dataclasses import replace
+import os
 from pathlib import Path
 import re
 import shutil
@@ -171,3 +172,41 @@ def test_mapping_calls_a_port_it_cannot_map_an_internal_error(index: InterfaceIn
     (diagnostic,) = error.value.diagnostics
     assert diagnostic.location == port.location
     assert diagnostic.message.startswith(f"internal error: port '{port.name}'")
+
+
+@requires_ros
+@pytest.mark.integration
+def test_without_rosidl_adapter_one_error_and_no_build(tmp_path: Path, corpus_prefix: Path,
+                                                       corpus_domain_id: int):
+    """Where rosidl_adapter cannot be imported, colcon says so once, and builds nothing."""
+    hidden = tmp_path / 'hidden' / 'rosidl_adapter'
+    hidden.mkdir(parents=True)
+    (hidden / '__init__.py').write_text("raise ImportError('hidden by the test')\n")
+    root = tmp_path / 'ws'
+    for name in ('service_definition', 'component_python'):
+        folder = root / 'src' / name
+        folder.mkdir(parents=True)
+        shutil.copyfile(MODELS / 'valid' / f'{name}.yaml', folder / 'robmosys.yaml')
+    env = ros_env.loopback_env(corpus_domain_id)
+    env['AMENT_PREFIX_PATH'] = str(corpus_prefix)
+    env['PYTHONPATH'] = os.pathsep.join(
+        [str(hidden.parent)] + [p for p in [env.get('PYTHONPATH')] if p])
+    colcon = [str(Path(sys.prefix) / 'bin' / 'colcon'), '--log-base', str(root / 'log')]
+    listed = ros_env.run([*colcon, 'list'], env=env, cwd=root, timeout=300)
+    expected = ('colcon-robmosys: error: rosidl_adapter, the parser of .msg, .srv and '
+                '.action files that checks the types and names of interfaces, cannot be '
+                'imported (hidden by the test): source a ROS 2 installation')
+    lines = listed.stderr.splitlines()
+    assert [line for line in lines if 'error' in line.lower()] == [
+        line for line in lines if line.startswith(expected)], listed.stderr
+    assert len([line for line in lines if line.startswith(expected)]) == 1, listed.stderr
+    # each model file is a package named after its folder, whose build fails
+    assert sorted(line.split('\t')[0] for line in listed.stdout.splitlines()
+                  if line.endswith('(robmosys.invalid)')) == [
+        'component_python', 'service_definition'], listed.stdout
+    built = ros_env.run([*colcon, 'build', '--packages-select', 'service_definition'],
+                        env=env, cwd=root, timeout=300)
+    assert built.returncode != 0
+    output = built.stdout + built.stderr
+    assert output.count(expected) == 1, output
+    assert not (root / 'install' / 'service_definition').exists()

@@ -63,12 +63,27 @@ def test_ament_python_linters_pass(generated, linter):
 
 
 def test_package_xml_files_are_valid_for_catkin_pkg(generated):
+    """Every package of test_workspace has a package.xml catkin_pkg reads as the model says."""
     from catkin_pkg.package import parse_package
-    for path in sorted(generated.glob('*/package.xml')):
-        package = parse_package(path)  # validates, like ament_cmake does
-        package.validate()
-        assert package.name == path.parent.name
+    src = TEST_WORKSPACE / 'src'
+    result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
+    models = {m.package: m for m in result.workspace.generated_models}
+    assert sorted(p.parent.name for p in generated.glob('*/package.xml')) == sorted(models)
+    for name, model in models.items():
+        warnings: list[str] = []
+        package = parse_package(generated / name / 'package.xml', warnings=warnings)
+        package.validate(warnings=warnings)  # what ament_cmake and bloom check
+        assert warnings == [], name
+        assert package.name == name
         assert package.get_build_type() == 'ament_cmake'
+        assert package.package_format == 3
+        info = model.info
+        assert (package.version, package.description) == (info.version, info.description)
+        assert [str(lic) for lic in package.licenses] == [info.license]
+        assert [(m.name, m.email) for m in package.maintainers] == \
+            [(m.name, m.email) for m in info.maintainers]
+        depends = {d.name for d in package.build_depends + package.exec_depends}
+        assert set(info.depends) <= depends, name
 
 
 def test_package_xml_files_pass_ament_xmllint(generated):

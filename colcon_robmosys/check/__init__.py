@@ -19,6 +19,7 @@ from colcon_robmosys.check.types import TypeRules
 from colcon_robmosys.check.underlays import installed_models, shadow_message
 from colcon_robmosys.check.wiring import WiringRules
 from colcon_robmosys.errors import Diagnostic, RobmosysError
+from colcon_robmosys.model import rosidl
 from colcon_robmosys.model.build import FileBuilder
 from colcon_robmosys.model.build_base import MODEL_SECTIONS
 from colcon_robmosys.model.files import (
@@ -176,6 +177,11 @@ def load_workspace(paths: Iterable[Path],
 
     :param cache: where files checked by an earlier run are kept, by content
     """
+    if rosidl.MISSING is not None:
+        # nothing can be checked without it: one error, and every file broken,
+        # so that the build of its packages fails
+        return LoadResult(Workspace(()), [Diagnostic(rosidl.MISSING_LOCATION, rosidl.MISSING)],
+                          {str(path): [] for path in sorted(set(paths))})
     files: list[ModelFile] = []
     diagnostics: list[Diagnostic] = []
     broken: dict[str, list[tuple[str, str]]] = {}

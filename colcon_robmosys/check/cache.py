@@ -24,6 +24,7 @@ import tempfile
 
 import colcon_robmosys
 from colcon_robmosys.errors import Diagnostic
+from colcon_robmosys.model import rosidl
 from colcon_robmosys.model.types import ModelFile
 
 #: The folder of the cache, in the build base (``build/`` of colcon).
@@ -38,7 +39,7 @@ _CODE_SUFFIXES = ('.py', '.json', '.jinja')
 
 @lru_cache(maxsize=1)
 def code_digest() -> str:
-    """Return a digest of the installed colcon-robmosys: its code, schema, templates.
+    """Return a digest of the installed colcon-robmosys (code, schema, templates), and rosidl's.
 
     The version number alone would not do: during development it stays the
     same while the code changes.
@@ -49,6 +50,9 @@ def code_digest() -> str:
         if path.suffix in _CODE_SUFFIXES and path.is_file():
             digest.update(str(path.relative_to(root)).encode() + b'\0')
             digest.update(path.read_bytes() + b'\0')
+    # types and names are rosidl_adapter's to judge: the rosidl of another
+    # ROS 2 (another distribution sourced) may judge otherwise
+    digest.update(rosidl.parser_source())
     return digest.hexdigest()
 
 

@@ -1,7 +1,21 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-"""Find interfaces installed outside the workspace, through the ament index."""
+"""Find what is installed outside the workspace, through the ament index.
+
+ament_index_python reads the same index, but not for us: its functions search
+the ``AMENT_PREFIX_PATH`` of ``os.environ`` at each call (``search_paths.
+get_search_paths``, which raises where it is unset), while an index here is a
+list of prefixes given (tests and benchmarks check models against a prefix of
+their own, and steering the library through ``os.environ`` would change the
+process's environment under colcon's parallel jobs); and its ``get_resources``
+gives the first prefix of each name, where the check warns about a package
+two underlays install, and so needs them all. So the index is walked here,
+the way ament_index_python walks it: ``share/ament_index/resource_index/
+<type>/<name>``, a file per resource, dot files and folders not counted.
+Generated code, which runs where ROS 2 is sourced, uses ament_index_python
+(robmosys_runtime).
+"""
 
 from __future__ import annotations
 
@@ -12,12 +26,19 @@ from typing import Mapping, Sequence
 
 from colcon_robmosys.model.types import InterfaceRef
 
+#: ament_index_python.constants.RESOURCE_INDEX_SUBFOLDER
+RESOURCE_INDEX = Path('share', 'ament_index', 'resource_index')
+
 
 class InterfaceIndex:
-    """The interface packages installed in a set of ament prefixes."""
+    """The packages, and their resources, installed in a set of ament prefixes."""
 
     def __init__(self, prefixes: Sequence[Path]):
-        self.prefixes = tuple(prefixes)
+        # a prefix named twice is one prefix, where it comes first
+        kept: dict[str, Path] = {}
+        for prefix in prefixes:
+            kept.setdefault(os.path.realpath(prefix), Path(prefix))
+        self.prefixes = tuple(kept.values())
 
     @classmethod
     def from_environment(
@@ -27,15 +48,38 @@ class InterfaceIndex:
             'AMENT_PREFIX_PATH', '')
         return cls([Path(p) for p in value.split(os.pathsep) if p])
 
+    def resources(self, resource_type: str) -> dict[str, list[Path]]:
+        """Return the names of a resource type -> the prefixes that have each, in order."""
+        found: dict[str, list[Path]] = {}
+        for prefix in self.prefixes:
+            folder = prefix / RESOURCE_INDEX / resource_type
+            if not folder.is_dir():
+                continue
+            for entry in sorted(folder.iterdir()):
+                if not entry.name.startswith('.') and entry.is_file():
+                    found.setdefault(entry.name, []).append(prefix)
+        return found
+
+    def resource(self, resource_type: str, name: str) -> tuple[str, Path] | None:
+        """Return the content of a resource and its prefix, the first that has it."""
+        prefix = self.resource_prefix(resource_type, name)
+        if prefix is None:
+            return None
+        path = prefix / RESOURCE_INDEX / resource_type / name
+        return path.read_text(encoding='utf-8'), prefix
+
     @lru_cache(maxsize=None)
+    def resource_prefix(self, resource_type: str, name: str) -> Path | None:
+        """Return the first prefix that has a resource, or None."""
+        for prefix in self.prefixes:
+            if (prefix / RESOURCE_INDEX / resource_type / name).is_file():
+                return prefix
+        return None
+
     def package_share(self, package: str) -> Path | None:
         """Return the share directory of an installed package, if any."""
-        for prefix in self.prefixes:
-            marker = prefix / 'share' / 'ament_index' / 'resource_index' / \
-                'packages' / package
-            if marker.is_file():
-                return prefix / 'share' / package
-        return None
+        prefix = self.resource_prefix('packages', package)
+        return None if prefix is None else prefix / 'share' / package
 
     def has_package(self, package: str) -> bool:
         """Tell whether the package is installed."""

@@ -35,16 +35,12 @@ def installed_model_paths(index: InterfaceIndex, present: set[str]
     The first file of a package is the one used; the others are hidden by it.
     """
     found: dict[str, list[Path]] = {}
-    seen: set[Path] = set()
-    for prefix in index.prefixes:
-        folder = prefix / 'share' / 'ament_index' / 'resource_index' / RESOURCE_TYPE
-        if not folder.is_dir() or folder.resolve() in seen:
-            continue  # a prefix named twice is one underlay
-        seen.add(folder.resolve())
-        for marker in sorted(folder.iterdir()):
-            path = prefix / 'share' / marker.name / 'robmosys' / 'robmosys.yaml'
-            if marker.name not in present and path.is_file():
-                found.setdefault(marker.name, []).append(path)
+    for package, prefixes in index.resources(RESOURCE_TYPE).items():
+        paths = [prefix / 'share' / package / 'robmosys' / 'robmosys.yaml'
+                 for prefix in prefixes]
+        paths = [path for path in paths if path.is_file()]
+        if package not in present and paths:
+            found[package] = paths
     return found
 
 

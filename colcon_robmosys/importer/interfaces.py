@@ -23,6 +23,7 @@ import yaml
 
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
+from colcon_robmosys.model import rosidl
 from colcon_robmosys.model.fieldtypes import interface_comment_problem
 
 #: the ament index resource type that lists a package's interface files
@@ -56,12 +57,7 @@ def import_interfaces(packages: list[str], index: InterfaceIndex, *,
       default they describe the installed packages (``external: true``)
     :raises RobmosysError: if a package is not an installed interface package
     """
-    try:
-        import rosidl_adapter.parser  # noqa: F401
-    except ImportError:
-        raise RobmosysError([Diagnostic(Location('rosidl_adapter'), 'rosidl_adapter, which '
-                                        'reads interface files, is not installed: source a '
-                                        'ROS 2 installation first')])
+    rosidl.require()
     problems = []
     found = []
     for package in packages:
@@ -79,12 +75,10 @@ def import_interfaces(packages: list[str], index: InterfaceIndex, *,
 
 
 def _listing(index: InterfaceIndex, package: str) -> list[str] | None:
-    for prefix in index.prefixes:
-        marker = prefix / 'share' / 'ament_index' / 'resource_index' / RESOURCE_TYPE / package
-        if marker.is_file():
-            return [line.strip() for line in marker.read_text(encoding='utf-8').splitlines()
-                    if line.strip()]
-    return None
+    found = index.resource(RESOURCE_TYPE, package)
+    if found is None:
+        return None
+    return [line.strip() for line in found[0].splitlines() if line.strip()]
 
 
 def _package_model(package: str, share: Path, listing: list[str],

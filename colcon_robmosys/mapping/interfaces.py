@@ -6,10 +6,10 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 from colcon_robmosys.mapping.common import (
     Banner, banner_of, package_xml, PackageXml)
+from colcon_robmosys.model.fieldtypes import msg_literal
 from colcon_robmosys.model.files import model_dependencies
 from colcon_robmosys.model.types import (
     Constant, Field, ServiceDefinition, Structure)
@@ -59,21 +59,6 @@ class InterfacePackage:
         return tuple(f.path for f in self.files)
 
 
-def _literal(value: Any, primitive: str | None) -> str:
-    """Write a default or constant value in .msg syntax."""
-    if isinstance(value, list):
-        return '[' + ', '.join(_literal(v, primitive) for v in value) + ']'
-    if isinstance(value, bool):
-        return 'true' if value else 'false'
-    if isinstance(value, str):
-        # rosidl_adapter unescapes inner quotes, then passes the value through
-        # Python's unicode_escape codec into an IDL string literal, whose
-        # parser unescapes backslashes twice: eight backslashes read back as
-        # one. The model refuses what no spelling carries (fieldtypes.py).
-        return '"' + value.replace('\\', '\\' * 8).replace('"', '\\"') + '"'
-    return repr(value)
-
-
 def _field_line(field_: Field, own_package: str) -> InterfaceLine:
     type_ = field_.type
     if type_.message is not None and type_.message.package == own_package:
@@ -81,15 +66,14 @@ def _field_line(field_: Field, own_package: str) -> InterfaceLine:
         type_text = str(type_).split('/', 1)[1]
     else:
         type_text = str(type_)
-    default = '' if field_.default is None else ' ' + _literal(
-        field_.default, type_.primitive)
+    default = '' if field_.default is None else ' ' + msg_literal(field_.default)
     return InterfaceLine(f'{type_text} {field_.name}{default}', field_.comment)
 
 
 def _constant_line(constant: Constant) -> InterfaceLine:
     return InterfaceLine(
         f'{constant.type} {constant.name}='
-        f'{_literal(constant.value, constant.type.primitive)}',
+        f'{msg_literal(constant.value)}',
         constant.comment)
 
 

@@ -52,11 +52,6 @@ PATTERN_INTERFACE = {
     Pattern.ACTION: InterfaceKind.ACTION,
 }
 
-PRIMITIVE_TYPES = frozenset({
-    'bool', 'byte', 'char', 'float32', 'float64', 'int8', 'uint8', 'int16',
-    'uint16', 'int32', 'uint32', 'int64', 'uint64', 'string', 'wstring',
-})
-
 LIFECYCLE_TRANSITIONS = (
     'on_configure', 'on_activate', 'on_deactivate', 'on_cleanup',
     'on_shutdown', 'on_error',

@@ -5,6 +5,8 @@
 
 from __future__ import annotations
 
+from colcon_robmosys.model import names
+from colcon_robmosys.model.base import InterfaceKind
 from colcon_robmosys.model.build_base import BuilderBase
 from colcon_robmosys.model.fieldtypes import (
     interface_comment_problem, parse_field_type, TypeNameError, value_problem)
@@ -24,7 +26,11 @@ class DefinitionBuilder(BuilderBase):
         seen: dict[str, str] = {}
 
         def named(section: str, name: str) -> None:
-            self.check_name(path + (section, name), 'interface', name)
+            kind = InterfaceKind.MSG if section == 'communication_objects' else \
+                InterfaceKind.SRV if section == 'queries' else InterfaceKind.ACTION
+            problem = names.name_problem('interface', name, kind)
+            if problem:
+                self.error(path + (section, name), problem, key=True)
             if name in seen:
                 self.error(path + (section, name),
                            f"'{name}' is already defined in {seen[name]}",

@@ -1,22 +1,18 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-r"""Naming rules: what a name must be to work in ROS 2, C++ and Python.
+"""Naming rules: what a name must be to work in ROS 2, C++ and Python.
 
-The patterns end with ``\Z``, not ``$``, which also matches before a final
-newline and would let a name followed by a newline through.
+The names of interfaces, fields and constants follow rosidl_adapter's rules
+(``rosidl.py``); the rules here are what C++ and Python add to them.
 """
 
 from __future__ import annotations
 
 import keyword
-import re
 
-PACKAGE_RE = re.compile(r'^(?!.*__)(?!.*_\Z)[a-z][a-z0-9_]+\Z')
-INTERFACE_TYPE_RE = re.compile(r'^[A-Z][A-Za-z0-9]*\Z')
-FIELD_RE = re.compile(r'^(?!.*__)(?!.*_\Z)[a-z][a-z0-9_]*\Z')
-CONSTANT_RE = re.compile(r'^(?!.*__)[A-Z](?:[A-Z0-9_]*[A-Z0-9])?\Z')
-IDENTIFIER_RE = re.compile(r'^(?!.*__)[A-Za-z][A-Za-z0-9_]*\Z')
+from colcon_robmosys.model import rosidl
+from colcon_robmosys.model.base import InterfaceKind
 
 CPP_KEYWORDS = frozenset("""
 alignas alignof and and_eq asm atomic_cancel atomic_commit atomic_noexcept
@@ -138,28 +134,31 @@ IDENTIFIER_KINDS = {
 }
 
 
-def name_problem(kind: str, name: str) -> str | None:
+def name_problem(kind: str, name: str,
+                 interface_kind: InterfaceKind = InterfaceKind.MSG) -> str | None:
     """Return the message about a name of a kind of the model, or None if it is valid.
 
     :param kind: 'package', 'interface', 'field', 'constant' or a key of
         :data:`IDENTIFIER_KINDS`
+    :param interface_kind: what an interface name names (rosidl derives
+        other names from a service's or an action's)
     """
     if kind == 'package':
         problem = package_problem(name)
         return f'package {shown(name)} {problem}' if problem else None
     if kind == 'interface':
-        return None if INTERFACE_TYPE_RE.match(name) else (
+        return None if rosidl.is_interface_name(name, interface_kind) else (
             f'{shown(name)} is not a valid interface name: CamelCase, '
             'starting with a capital letter')
     if kind == 'field':
-        if not FIELD_RE.match(name):
+        if not rosidl.is_field_name(name):
             return (f'field {shown(name)} is not a valid field name: lower case '
                     'letters, digits and single underscores, starting with a letter')
         if name in CPP_KEYWORDS or name in PYTHON_KEYWORDS:
             return f'field {shown(name)} is a C++ or Python keyword'
         return None
     if kind == 'constant':
-        return None if CONSTANT_RE.match(name) else (
+        return None if rosidl.is_constant_name(name) else (
             f'constant {shown(name)} is not a valid constant name: upper case '
             'letters, digits and single underscores, starting with a letter')
     what = IDENTIFIER_KINDS[kind]
@@ -176,8 +175,13 @@ def name_problem(kind: str, name: str) -> str | None:
 
 
 def package_problem(name: str) -> str | None:
-    """Return why a name cannot be a ROS 2 package name (REP 144), or None."""
-    if not PACKAGE_RE.match(name):
+    """Return why a name cannot be a ROS 2 package name (REP 144), or None.
+
+    rosidl_adapter's rule, which every package of ours meets: components and
+    systems are the packages of the interfaces their nodes announce. REP 144
+    also wants two characters at least, which rosidl does not check.
+    """
+    if not rosidl.is_package_name(name) or len(name) < 2:
         return ('is not a valid ROS 2 package name: lower case letters, '
                 'digits and single underscores, starting with a letter, '
                 'at least two characters, not ending with an underscore')

@@ -14,7 +14,7 @@ from typing import Union
 
 from colcon_robmosys.model.base import (
     InterfaceKind, InterfaceRef, Language, LIFECYCLE_TRANSITIONS, Maintainer,
-    PackageInfo, Pattern, PATTERN_INTERFACE, PRIMITIVE_TYPES, Role)
+    PackageInfo, Pattern, PATTERN_INTERFACE, Role)
 from colcon_robmosys.model.components import (
     Activity, Component, Function, Parameter, ParameterRange, ParameterSize,
     ParameterValue, Port, QoS)
@@ -30,7 +30,7 @@ __all__ = [
     'InterfaceKind', 'InterfaceRef', 'Language', 'LIFECYCLE_TRANSITIONS',
     'Maintainer', 'Model', 'model_key', 'ModelFile', 'PackageInfo', 'Parameter',
     'ParameterRange', 'ParameterSize', 'ParameterValue', 'Pattern', 'PATTERN_INTERFACE',
-    'Port', 'PortRef', 'PRIMITIVE_TYPES', 'QoS', 'QoSOverride', 'Query', 'Role',
+    'Port', 'PortRef', 'QoS', 'QoSOverride', 'Query', 'Role',
     'ServiceDefinition', 'Structure', 'Subsystem', 'System', 'Workspace',
 ]
 

@@ -7,9 +7,10 @@ from colcon_core.package_identification import IgnoreLocationException
 from colcon_core.package_identification import \
     PackageIdentificationExtensionPoint
 from colcon_core.plugin_system import satisfies_version
+from colcon_ros.package_identification.ros import get_package_with_build_type
 
 from colcon_robmosys.model.files import MODEL_FILE_NAME
-from colcon_robmosys.runtime import names_runtime
+from colcon_robmosys.runtime import RUNTIME_PACKAGE
 
 
 class RobmosysPackageIdentification(PackageIdentificationExtensionPoint):
@@ -40,7 +41,10 @@ class RobmosysPackageIdentification(PackageIdentificationExtensionPoint):
             return
         model_file = Path(metadata.path) / MODEL_FILE_NAME
         if not model_file.is_file():
-            if names_runtime(Path(metadata.path) / 'package.xml'):
+            # colcon-ros reads the package.xml of every folder with catkin_pkg
+            # and keeps what it read: asked first, it reads nothing twice
+            package, _ = get_package_with_build_type(str(metadata.path))
+            if package is not None and package.name == RUNTIME_PACKAGE:
                 self.runtime_folders.add(Path(metadata.path).resolve())
             return
         self.model_files.add(model_file.resolve())

@@ -83,6 +83,8 @@ def missing_prefix_packages(names, dependency_prefixes=(), environ=None):
     its ament index entry or its CMake config file, which is what
     find_package() will look for.
     """
+    # not ament_index_python: it reads os.environ's AMENT_PREFIX_PATH only, and
+    # find_package() also looks in CMAKE_PREFIX_PATH and the dependencies' prefixes
     environ = os.environ if environ is None else environ
     prefixes = [Path(p) for p in dependency_prefixes]
     for variable in ('AMENT_PREFIX_PATH', 'CMAKE_PREFIX_PATH'):

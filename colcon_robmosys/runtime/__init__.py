@@ -13,12 +13,9 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 import os
 from pathlib import Path
-import re
 
 #: The name of the runtime package.
 RUNTIME_PACKAGE = 'robmosys_runtime'
-
-_NAME = re.compile(rb'<name>\s*' + RUNTIME_PACKAGE.encode() + rb'\s*</name>')
 
 
 def runtime_source() -> Path:
@@ -36,6 +33,8 @@ def installed_runtime(environ: Mapping[str, str] | None = None,
     ignored folder do not count (the install folder of the workspace being
     built: its own earlier build of the runtime is no underlay).
     """
+    # not ament_index_python: it reads os.environ's AMENT_PREFIX_PATH only, and
+    # knows neither CMAKE_PREFIX_PATH nor prefixes that do not count
     environ = os.environ if environ is None else environ
     skipped = [Path(p).resolve() for p in ignored]
     candidates = {
@@ -54,11 +53,3 @@ def installed_runtime(environ: Mapping[str, str] | None = None,
             if (prefix / marker).is_file():
                 return prefix
     return None
-
-
-def names_runtime(package_xml: Path) -> bool:
-    """Return whether a package.xml is the manifest of a runtime package."""
-    try:
-        return bool(_NAME.search(package_xml.read_bytes()))
-    except OSError:
-        return False

@@ -14,6 +14,7 @@ from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.generators.writer import create_user_file
 from colcon_robmosys.importer.interfaces import import_interfaces
 from colcon_robmosys.importer.running import import_running_system
+from colcon_robmosys.model import rosidl
 from colcon_robmosys.model.names import package_problem
 from colcon_robmosys.verb import display_path
 from colcon_robmosys.verb import MAINTAINER
@@ -79,6 +80,11 @@ class RobmosysImportVerb(VerbExtensionPoint):
 
     def main(self, *, context):  # noqa: D102
         args = context.args
+        try:
+            rosidl.require()  # it reads interface files and checks names
+        except RobmosysError as error:
+            print_diagnostics(error.diagnostics)
+            return 1
         if args.what == 'graph':
             return _import_graph(args)
         try:
