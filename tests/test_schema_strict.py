@@ -50,6 +50,7 @@ CHECK_ONLY = {
     'definition_external_not_installed': _CROSS,
     'duplicate_package': _CROSS,
     'duplicate_package_across_files': _CROSS,
+    'field_default_escaped_over_bound': _FIELD_VALUE,
     'field_default_out_of_range': _FIELD_VALUE,
     'function_periodic_and_triggered': _CODE,
     'function_python_syntax_error': _CODE,

@@ -16,7 +16,7 @@ from typing import Any
 from jsonschema.exceptions import ValidationError
 
 from colcon_robmosys.model import names
-from colcon_robmosys.model.base import Pattern, PATTERN_INTERFACE
+from colcon_robmosys.model.base import InterfaceKind, Pattern, PATTERN_INTERFACE
 from colcon_robmosys.model.fieldtypes import (
     parse_field_type, parse_interface, TypeNameError)
 from colcon_robmosys.model.loaded import NodePath
@@ -44,6 +44,10 @@ _NAME_KINDS = dict(
     {k: v for k, v in _ENTRIES.items() if v in names.IDENTIFIER_KINDS},
     communication_objects='interface', queries='interface', actions='interface',
     events='interface', fields='field', constants='constant')
+
+#: the sections of interfaces -> what their names name (an event is an action)
+_INTERFACE_KINDS = {'communication_objects': InterfaceKind.MSG, 'events': InterfaceKind.ACTION,
+                    'queries': InterfaceKind.SRV, 'actions': InterfaceKind.ACTION}
 
 #: validators whose error the schema words itself, with an errorMessage
 _WORDED = ('not', 'anyOf', 'oneOf', 'required')
@@ -133,7 +137,8 @@ def _explained(path: NodePath, root: Any, value: Any, about_key: bool) -> str | 
         return None
     if about_key:
         kind = _NAME_KINDS.get(str(path[-1])) if path else None
-        return names.name_problem(kind, value) if kind else None
+        return names.name_problem(kind, value, _INTERFACE_KINDS.get(
+            str(path[-1]), InterfaceKind.MSG)) if kind else None
     if len(path) == 3 and path[0] in _MODELS and path[2] in ('name', 'package'):
         kind = 'package' if path[2] == 'package' else _MODELS[str(path[0])]
         return names.name_problem(kind, value) if kind in (
