@@ -38,8 +38,9 @@ def _break_both_components(workspace: Path) -> tuple[Path, list[str]]:
     text = text.replace('trigger: sText', 'trigger: sTextt')
     model.write_text(text)
     return model, [
-        f"{model}:22:21: error: unknown function 'fSendd' (known: fReset, fSend)",
-        f"{model}:64:18: error: activity 'Receive' is triggered by unknown port "
+        f"{model}:22:21: error: unknown function 'fSendd' (known: fReset, fSend, "
+        "fStyleChanged, vGreeting)",
+        f"{model}:86:18: error: activity 'Receive' is triggered by unknown port "
         "'sTextt' (known: sText)",
     ]
 

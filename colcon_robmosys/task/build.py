@@ -18,12 +18,17 @@ from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
 from colcon_robmosys.generators import StampStore
 from colcon_robmosys.generators import unchanged_package
+from colcon_robmosys.mapping.distributions import distribution_problem
 from colcon_robmosys.package_discovery.robmosys import checked_result
 from colcon_robmosys.report import report_problem
 from colcon_robmosys.report import ReportRequest
 from colcon_robmosys.report import write_report
 
 logger = colcon_logger.getChild(__name__)
+
+#: whether a build of this process has reported the shell's unsupported ROS 2
+#: distribution (colcon runs the packages' tasks in one process)
+_distribution_reported = False
 
 #: The folder, inside the package's build folder, of the generated sources.
 GENERATED_DIR = 'src-gen'
@@ -59,6 +64,18 @@ class RobmosysBuildTask(TaskExtensionPoint):
         errors = result.errors_of(model_file)
         _test_result(args, pkg.name, model_file,
                      errors + result.warnings_of(pkg.name))
+        problem = distribution_problem(os.environ)
+        if problem:
+            # before anything is generated: the packages could not build
+            # here. The error once, as for a model's; each package says what
+            # it holds back
+            global _distribution_reported
+            line = f"cannot generate '{pkg.name}': see the error on ROS_DISTRO\n"
+            if not _distribution_reported:
+                _distribution_reported = True
+                line = f'error: {problem}\n' + line
+            self.context.put_event_into_queue(StderrLine(line.encode()))
+            return 1
         if errors or model_file in result.broken_files:
             # discovery has printed them; this package's failure in colcon's
             # summary says what it holds back

@@ -17,6 +17,7 @@ from colcon_robmosys.generators import create_missing_user_files
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
 from colcon_robmosys.generators import write_tree
+from colcon_robmosys.mapping.distributions import distribution_problem
 from colcon_robmosys.model.schema import schema_path
 from colcon_robmosys.package_discovery.robmosys import checked_result
 from colcon_robmosys.report import report_problem
@@ -112,6 +113,11 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
             print(f'{len(selected)} package(s) valid: ' +
                   ', '.join(sorted(d.name for d in selected)))
             return 0
+        problem = distribution_problem(os.environ)
+        if problem:
+            # generated all the same: the files can be read, or exported and
+            # built on another machine; colcon build refuses
+            print(f'warning: {problem}', file=sys.stderr)
         out_base = args.output_dir
         if args.export is not None:
             problem = _export_problem(args.export, args)
