@@ -39,7 +39,7 @@ def _break_both_components(workspace: Path) -> tuple[Path, list[str]]:
     model.write_text(text)
     return model, [
         f"{model}:22:21: error: unknown function 'fSendd' (known: fReset, fSend, "
-        "fStyleChanged, vGreeting)",
+        'fStyleChanged, vGreeting)',
         f"{model}:86:18: error: activity 'Receive' is triggered by unknown port "
         "'sTextt' (known: sText)",
     ]
