@@ -199,3 +199,36 @@ def test_a_workspace_of_starting_models_builds_and_runs(tmp_path, domain_id):
                           timeout=20), process.output()
         assert 'publishing: hello' in process.output()
         assert driver.transition(node.fqn, 'deactivate')
+
+
+def _rclcpp_missing() -> str | None:
+    from colcon_robmosys.devtools import ros_env
+    from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
+    from colcon_robmosys.package_selection.robmosys import missing_prefix_packages
+    missing = missing_prefix_packages(CPP_CLIENT_PACKAGES, [], environ=ros_env.loopback_env(1))
+    return f'{", ".join(missing)} not on this prefix (not on PyPI)' if missing else None
+
+
+@requires_ros
+@pytest.mark.integration
+@pytest.mark.skipif(_rclcpp_missing() is not None, reason=_rclcpp_missing() or '')
+def test_the_cpp_starting_component_builds_and_runs(tmp_path, domain_id):
+    result = _new(['component', 'demo_cpp', '--language', 'cpp'], tmp_path)
+    assert result.returncode == 0, result.stderr
+    result = colcon(['build', '--packages-select', 'demo_cpp'], cwd=tmp_path, timeout=900)
+    assert result.returncode == 0, result.stdout + result.stderr
+    # its functions' code is the model's: nothing for the user to fill to run it
+    install = tmp_path / 'install'
+    executable = install / 'demo_cpp' / 'lib' / 'demo_cpp' / 'DemoCpp'
+    from colcon_robmosys.devtools import ros_env
+    env = ros_env.workspace_env(install, ros_env.loopback_env(domain_id))
+    command = [str(executable), '--ros-args', '-r', '__node:=starter']
+    with contextlib.ExitStack() as stack:
+        process = stack.enter_context(background(command, env=env))
+        driver = stack.enter_context(LifecycleDriver(domain_id))
+        assert driver.transition('/starter', 'configure'), process.output()
+        assert "configured with text 'hello'" in process.output()
+        assert driver.transition('/starter', 'activate')
+        assert wait_until(lambda: 'publishing: hello' in process.output(), timeout=20), \
+            process.output()
+        assert driver.transition('/starter', 'deactivate')
