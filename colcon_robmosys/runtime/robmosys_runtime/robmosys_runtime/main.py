@@ -66,12 +66,27 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     finally:
         for signum in (signal.SIGINT, signal.SIGTERM):
             signal.signal(signum, _exit_at_once)
-        executor.shutdown()
+        stop_executor(executor)
         _settle_callbacks(executor, nodes[0])
         for node in nodes:
             node.destroy_node()
         rclpy.try_shutdown()
     return 0
+
+
+def stop_executor(executor: MultiThreadedExecutor) -> None:
+    """
+    Stop the executor and wait for the callbacks it is running to end.
+
+    rclpy 9.1 (Kilted) waits for the threads of a MultiThreadedExecutor in
+    shutdown(); rclpy 7.1 (Jazzy) returns at once, and a callback still
+    running would then meet its node destroyed: its threads are waited on
+    here (a second SIGINT or SIGTERM still ends the process at once).
+    """
+    executor.shutdown()
+    pool = getattr(executor, '_executor', None)
+    if pool is not None:
+        pool.shutdown(wait=True)
 
 
 def _settle_callbacks(executor: MultiThreadedExecutor, node: Node) -> None:
