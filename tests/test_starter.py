@@ -215,7 +215,9 @@ def _rclcpp_missing() -> str | None:
 def test_the_cpp_starting_component_builds_and_runs(tmp_path, domain_id):
     result = _new(['component', 'demo_cpp', '--language', 'cpp'], tmp_path)
     assert result.returncode == 0, result.stderr
-    result = colcon(['build', '--packages-select', 'demo_cpp'], cwd=tmp_path, timeout=900)
+    result = colcon(['robmosys-generate'], cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    result = colcon(['build', '--packages-up-to', 'demo_cpp'], cwd=tmp_path, timeout=900)
     assert result.returncode == 0, result.stdout + result.stderr
     # its functions' code is the model's: nothing for the user to fill to run it
     install = tmp_path / 'install'
