@@ -53,10 +53,11 @@ class BuiltWorkspace:
         return self.install / package / 'share' / package
 
 
-def colcon(args: list[str], *, cwd: Path, timeout: float = 900,
-           domain_id: int = 0) -> 'ros_env.subprocess.CompletedProcess':
-    """Run colcon from this venv in a workspace, on loopback."""
+def colcon(args: list[str], *, cwd: Path, timeout: float = 900, domain_id: int = 0,
+           extra_env: dict[str, str] | None = None) -> 'ros_env.subprocess.CompletedProcess':
+    """Run colcon from this venv in a workspace, on loopback (plus ``extra_env``)."""
     env = ros_env.loopback_env(domain_id or ros_env.free_domain_id())
+    env.update(extra_env or {})
     return ros_env.run([str(Path(sys.prefix) / 'bin' / 'colcon'), *args],
                        env=env, cwd=cwd, timeout=timeout)
 

@@ -12,13 +12,14 @@ from __future__ import annotations
 
 from pathlib import Path
 import shutil
-import sys
 
 import pytest
 
-from colcon_robmosys.devtools import ros_env
 from colcon_robmosys.mapping.distributions import distribution_problem, SUPPORTED
-from conftest import requires_ros, TEST_WORKSPACE
+from conftest import colcon, requires_ros, TEST_WORKSPACE
+
+#: the shell of an older distribution
+HUMBLE = {'ROS_DISTRO': 'humble'}
 
 
 @pytest.mark.parametrize('value', ['', 'jazzy', 'kilted', 'rolling', 'lyrical', 'Jazzy'])
@@ -41,23 +42,17 @@ def test_the_documented_distributions_are_the_supported_ones():
     assert all(f'**{name.capitalize()}**' in docs for name in SUPPORTED)
 
 
-def _colcon(args: list[str], cwd: Path, distro: str):
-    env = ros_env.loopback_env(ros_env.free_domain_id())
-    env['ROS_DISTRO'] = distro
-    return ros_env.run([str(Path(sys.prefix) / 'bin' / 'colcon'), *args],
-                       env=env, cwd=cwd, timeout=600)
-
-
 @requires_ros
 @pytest.mark.integration
 def test_build_on_an_older_distribution_is_one_error_and_nothing_generated(tmp_path):
     shutil.copytree(TEST_WORKSPACE / 'src', tmp_path / 'src',
                     ignore=shutil.ignore_patterns('__pycache__'))
     before = sorted(p.relative_to(tmp_path) for p in (tmp_path / 'src').rglob('*'))
-    result = _colcon(['build', '--packages-select', 'sender', 'receiver'], tmp_path, 'humble')
+    result = colcon(['build', '--packages-select', 'sender', 'receiver'], cwd=tmp_path,
+                    extra_env=HUMBLE)
     assert result.returncode != 0, result.stdout + result.stderr
     errors = [line for line in result.stderr.splitlines() if line.startswith('error: ')]
-    assert errors == [f'error: {distribution_problem({"ROS_DISTRO": "humble"})}'], \
+    assert errors == [f'error: {distribution_problem(HUMBLE)}'], \
         result.stderr
     assert "cannot generate 'sender': see the error on ROS_DISTRO" in result.stderr
     assert "cannot generate 'receiver': see the error on ROS_DISTRO" in result.stderr
@@ -72,9 +67,9 @@ def test_generate_on_an_older_distribution_warns_and_generates(tmp_path):
     shutil.copytree(TEST_WORKSPACE / 'src', tmp_path / 'src',
                     ignore=shutil.ignore_patterns('__pycache__'))
     out = tmp_path / 'generated'
-    result = _colcon(['robmosys-generate', '--packages-select', 'sender',
-                      '--output-dir', str(out)], tmp_path, 'humble')
+    result = colcon(['robmosys-generate', '--packages-select', 'sender',
+                     '--output-dir', str(out)], cwd=tmp_path, extra_env=HUMBLE)
     assert result.returncode == 0, result.stdout + result.stderr
-    assert f'warning: {distribution_problem({"ROS_DISTRO": "humble"})}' in \
+    assert f'warning: {distribution_problem(HUMBLE)}' in \
         result.stderr.splitlines()
     assert (out / 'sender' / 'package.xml').is_file()

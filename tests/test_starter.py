@@ -16,6 +16,7 @@ import re
 import sys
 
 import pytest
+from test_cpp_system import requires_rclcpp
 import yaml
 
 from colcon_robmosys.check import find_model_files, load_workspace
@@ -201,17 +202,9 @@ def test_a_workspace_of_starting_models_builds_and_runs(tmp_path, domain_id):
         assert driver.transition(node.fqn, 'deactivate')
 
 
-def _rclcpp_missing() -> str | None:
-    from colcon_robmosys.devtools import ros_env
-    from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
-    from colcon_robmosys.package_selection.robmosys import missing_prefix_packages
-    missing = missing_prefix_packages(CPP_CLIENT_PACKAGES, [], environ=ros_env.loopback_env(1))
-    return f'{", ".join(missing)} not on this prefix (not on PyPI)' if missing else None
-
-
 @requires_ros
 @pytest.mark.integration
-@pytest.mark.skipif(_rclcpp_missing() is not None, reason=_rclcpp_missing() or '')
+@requires_rclcpp
 def test_the_cpp_starting_component_builds_and_runs(tmp_path, domain_id):
     result = _new(['component', 'demo_cpp', '--language', 'cpp'], tmp_path)
     assert result.returncode == 0, result.stderr

@@ -6,7 +6,6 @@
 from __future__ import annotations
 
 from colcon_robmosys.model import names
-from colcon_robmosys.model.base import InterfaceKind
 from colcon_robmosys.model.build_base import BuilderBase
 from colcon_robmosys.model.fieldtypes import (
     interface_comment_problem, parse_field_type, TypeNameError, value_problem)
@@ -26,9 +25,7 @@ class DefinitionBuilder(BuilderBase):
         seen: dict[str, str] = {}
 
         def named(section: str, name: str) -> None:
-            kind = InterfaceKind.MSG if section == 'communication_objects' else \
-                InterfaceKind.SRV if section == 'queries' else InterfaceKind.ACTION
-            problem = names.name_problem('interface', name, kind)
+            problem = names.name_problem('interface', name, names.INTERFACE_SECTIONS[section])
             if problem:
                 self.error(path + (section, name), problem, key=True)
             if name in seen:

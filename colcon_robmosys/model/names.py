@@ -134,6 +134,14 @@ IDENTIFIER_KINDS = {
 }
 
 
+#: the sections of a service definition -> what the names in them name (an
+#: event is an action of its own)
+INTERFACE_SECTIONS = {
+    'communication_objects': InterfaceKind.MSG, 'queries': InterfaceKind.SRV,
+    'actions': InterfaceKind.ACTION, 'events': InterfaceKind.ACTION,
+}
+
+
 def name_problem(kind: str, name: str,
                  interface_kind: InterfaceKind = InterfaceKind.MSG) -> str | None:
     """Return the message about a name of a kind of the model, or None if it is valid.

@@ -45,10 +45,6 @@ _NAME_KINDS = dict(
     communication_objects='interface', queries='interface', actions='interface',
     events='interface', fields='field', constants='constant')
 
-#: the sections of interfaces -> what their names name (an event is an action)
-_INTERFACE_KINDS = {'communication_objects': InterfaceKind.MSG, 'events': InterfaceKind.ACTION,
-                    'queries': InterfaceKind.SRV, 'actions': InterfaceKind.ACTION}
-
 #: validators whose error the schema words itself, with an errorMessage
 _WORDED = ('not', 'anyOf', 'oneOf', 'required')
 
@@ -137,7 +133,7 @@ def _explained(path: NodePath, root: Any, value: Any, about_key: bool) -> str | 
         return None
     if about_key:
         kind = _NAME_KINDS.get(str(path[-1])) if path else None
-        return names.name_problem(kind, value, _INTERFACE_KINDS.get(
+        return names.name_problem(kind, value, names.INTERFACE_SECTIONS.get(
             str(path[-1]), InterfaceKind.MSG)) if kind else None
     if len(path) == 3 and path[0] in _MODELS and path[2] in ('name', 'package'):
         kind = 'package' if path[2] == 'package' else _MODELS[str(path[0])]
