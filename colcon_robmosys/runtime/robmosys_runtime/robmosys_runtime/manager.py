@@ -116,15 +116,14 @@ class Manager:
     # what operators see
 
     def states(self) -> Dict[str, str]:
-        """Return the state of every instance (``running`` or ``exited`` if not managed)."""
+        """Return the state of every instance (starting, running or exited if not managed)."""
         states = self.activation.states()
         for name in self.instances:
             if name not in self.managed:
                 if name not in self._group_of:
                     states[name] = 'elsewhere'
                 else:
-                    states[name] = 'exited' if self.processes.ended(
-                        self._group_of[name]) else 'running'
+                    states[name] = self.processes.state(self._group_of[name])
             elif name in self._silent and states.get(name) != 'failed':
                 states[name] = 'unknown'
         return states

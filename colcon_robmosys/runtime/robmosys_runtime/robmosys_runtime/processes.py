@@ -54,9 +54,17 @@ class Processes:
         """Start watching the processes."""
         self._watch.start()
 
-    def ended(self, name: str) -> bool:
-        """Tell whether the process of an instance has ended."""
-        return self._processes[name].poll() is not None
+    def state(self, name: str) -> str:
+        """
+        Return the state of the process of an instance: starting, running or exited.
+
+        The manager's services answer from the start, before every process
+        is started: one not started yet is starting.
+        """
+        process = self._processes.get(name)
+        if process is None:
+            return 'starting'
+        return 'running' if process.poll() is None else 'exited'
 
     def _watch_loop(self) -> None:
         reported: Dict[str, subprocess.Popen[bytes]] = {}
