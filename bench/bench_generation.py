@@ -8,7 +8,10 @@ in this process, through the library, as ``colcon build`` runs it: load and
 validate every model, plan every package, render and write it into a temporary
 folder. Prints the time per component at each N and its ratio to the time per
 component at the smallest N, which should stay near 1.00x; the same for a second
-generation with nothing changed (every file is compared, none is written). Wall-clock
+generation with nothing changed (every file is compared, none is written). Each
+first generation is also compared with writing the very files it wrote, by plain
+``open()`` and ``write()`` into a fresh folder (a folder made once): what putting
+those packages on this disk costs at the least, however they were made. Wall-clock
 time is what a user waits; the CPU time of this process leaves out waiting for the
 disk (every file written is synced) and for the other processes of a busy machine.
 
@@ -93,6 +96,26 @@ def generate_workspace(src: Path, out: Path, index: InterfaceIndex) -> Phases:
                   time.process_time() - cpu_start)
 
 
+def write_plainly(out: Path, floor: Path) -> tuple[float, float]:
+    """Write the files a generation wrote into out (its cache aside) below floor, plainly.
+
+    :returns: the wall-clock and CPU seconds of the writing alone (the files
+      are read beforehand)
+    """
+    files = {p.relative_to(out): p.read_bytes() for p in sorted(out.rglob('*'))
+             if p.is_file() and CACHE_DIR not in p.relative_to(out).parts}
+    start, cpu_start = time.perf_counter(), time.process_time()
+    made = set()
+    for relative, data in files.items():
+        folder = floor / relative.parent
+        if folder not in made:
+            folder.mkdir(parents=True, exist_ok=True)
+            made.add(folder)
+        with open(floor / relative, 'wb') as stream:
+            stream.write(data)
+    return time.perf_counter() - start, time.process_time() - cpu_start
+
+
 def _sum(phases: Sequence[Phases]) -> Phases:
     return Phases(*(sum(getattr(p, f) for p in phases) for f in
                     ('load', 'plan', 'write', 'written', 'unchanged', 'cpu')))
@@ -107,6 +130,8 @@ class Samples:
     packages: int = 0
     first: list[Phases] = field(default_factory=list)
     again: list[Phases] = field(default_factory=list)
+    #: (wall, CPU) seconds of writing the files of each first generation plainly
+    plain: list[tuple[float, float]] = field(default_factory=list)
 
 
 #: Every CPP_EVERY-th component of the synthetic workspaces is a C++ one (0: none).
@@ -114,11 +139,12 @@ CPP_EVERY = 5
 
 
 def measure_once(components: int, batch: int,
-                 index: InterfaceIndex) -> tuple[int, Phases, Phases]:
+                 index: InterfaceIndex) -> tuple[int, Phases, Phases, tuple[float, float]]:
     """Generate ``batch`` fresh workspaces of that many components: from nothing, then again.
 
-    :returns: the packages of a workspace, and the sums of the phases of the two
-      generations of every workspace
+    :returns: the packages of a workspace, the sums of the phases of the two
+      generations of every workspace, and the (wall, CPU) seconds of writing the
+      files of the first generations plainly
     """
     with tempfile.TemporaryDirectory(prefix='robmosys-bench-gen-') as tmp:
         roots = [Path(tmp) / str(b) for b in range(batch)]
@@ -126,9 +152,11 @@ def measure_once(components: int, batch: int,
             shape = write_workspace(root / 'src', components, cpp_every=CPP_EVERY)
         first = _sum([generate_workspace(r / 'src', r / 'out', index) for r in roots])
         again = _sum([generate_workspace(r / 'src', r / 'out', index) for r in roots])
+        plain = [write_plainly(r / 'out', r / 'plain') for r in roots]
     if again.written:
         raise RuntimeError(f'a generation with nothing changed wrote {again.written} files')
-    return shape.packages, first, again
+    return (shape.packages, first, again,
+            (sum(p[0] for p in plain), sum(p[1] for p in plain)))
 
 
 def run(sizes: Sequence[int], repeat: int) -> list[Samples]:
@@ -144,10 +172,12 @@ def run(sizes: Sequence[int], repeat: int) -> list[Samples]:
     samples = {n: Samples(n, max(1, max(sizes) // n)) for n in sizes}
     for _ in range(repeat):
         for entry in samples.values():
-            packages, first, again = measure_once(entry.components, entry.batch, index)
+            packages, first, again, plain = measure_once(entry.components, entry.batch,
+                                                         index)
             entry.packages = packages
             entry.first.append(first)
             entry.again.append(again)
+            entry.plain.append(plain)
     return [samples[n] for n in sizes]
 
 
@@ -203,6 +233,8 @@ def goals(results: list[Samples]) -> list[str]:
         return 'met' if ok else 'NOT met'
 
     first, again = best(largest, 'first'), best(largest, 'again')
+    plain_wall = min(p[0] for p in largest.plain)
+    plain_cpu = min(p[1] for p in largest.plain)
     per_large = first.total / (largest.components * largest.batch)
     per_small = best(smallest, 'first').total / (smallest.components * smallest.batch)
     flat = per_large / per_small
@@ -213,6 +245,10 @@ def goals(results: list[Samples]) -> list[str]:
         f'  first generation: {first.total:.2f} s wall, {first.cpu:.2f} s CPU '
         f'(goal < {GOAL_FIRST_S} s: wall {met(first.total < GOAL_FIRST_S)}, '
         f'CPU {met(first.cpu < GOAL_FIRST_S)})',
+        '    writing the files of its packages plainly (open, write): '
+        f'{plain_wall:.2f} s wall, {plain_cpu:.2f} s CPU; the generation takes '
+        f'{ratio(first.total, plain_wall)} the wall time, {ratio(first.cpu, plain_cpu)} '
+        'the CPU time (fastest of each)',
         f'  no-change generation: {again.total:.2f} s wall, {again.cpu:.2f} s CPU '
         f'(goal < {GOAL_AGAIN_S} s: wall {met(again.total < GOAL_AGAIN_S)}, '
         f'CPU {met(again.cpu < GOAL_AGAIN_S)})',
@@ -239,7 +275,7 @@ def report(results: list[Samples]) -> str:
 def profile(components: int, limit: int = 30) -> None:
     """Print where one generation of that size spends its time."""
     index = ros_index()
-    measure_once(10, 1, index)
+    measure_once(10, 1, index)  # warm up
     profiler = cProfile.Profile()
     with tempfile.TemporaryDirectory(prefix='robmosys-bench-gen-') as tmp:
         src, out = Path(tmp) / 'src', Path(tmp) / 'out'

@@ -48,7 +48,6 @@ def _write_temp(path: Path, data: bytes, executable: bool, *,
     :param sync: flush the data to the disk before returning, so that a
       rename or link that follows cannot outlive it in a power cut
     """
-    path.parent.mkdir(parents=True, exist_ok=True)
     # created with its final mode (the umask applies), so that no chmod
     # follows; O_EXCL: a name another process took is tried again
     mode = 0o777 if executable else 0o666
@@ -61,6 +60,12 @@ def _write_temp(path: Path, data: bytes, executable: bool, *,
             break
         except FileExistsError:
             continue
+        except FileNotFoundError:
+            # the folder is new: made once for all its files, not tried
+            # before each (a mkdir per file was a third of a first generation)
+            if path.parent.is_dir():
+                raise
+            path.parent.mkdir(parents=True, exist_ok=True)
     try:
         with os.fdopen(fd, 'wb') as stream:
             stream.write(data)

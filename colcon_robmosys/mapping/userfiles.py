@@ -64,9 +64,7 @@ def user_folders(component: Component, workspace: Workspace | None = None
     :param workspace: the models the component is checked with; without
       it, the component is taken to be the only one of its file
     """
-    siblings = [] if workspace is None else [
-        m for m in workspace.models
-        if isinstance(m, Component) and not m.external and
-        m.info.model_file == component.info.model_file]
-    own = component.package if len(siblings) > 1 else ''
+    siblings = 0 if workspace is None else \
+        workspace.components_in_file(component.info.model_file)
+    own = component.package if siblings > 1 else ''
     return UserFolders(code=f'src/{component.package}', own=own)

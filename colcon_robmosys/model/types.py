@@ -66,6 +66,9 @@ class Workspace:
     # packages one by one: a scan per lookup made that quadratic
     _by_package: dict[str, Model] = field(
         init=False, repr=False, compare=False)
+    # model file -> how many components of it generate a package
+    _components_per_file: dict[str, int] = field(
+        init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         models = tuple(m for f in self.files for m in f.models)
@@ -74,8 +77,13 @@ class Workspace:
             # a package claimed twice is an error of the workspace; until
             # it is fixed, the first model keeps it
             by_package.setdefault(model_key(model), model)
+        per_file: dict[str, int] = {}
+        for model in models:
+            if isinstance(model, Component) and not model.external:
+                per_file[model.info.model_file] = per_file.get(model.info.model_file, 0) + 1
         object.__setattr__(self, 'models', models)
         object.__setattr__(self, '_by_package', by_package)
+        object.__setattr__(self, '_components_per_file', per_file)
 
     @property
     def generated_models(self) -> tuple[Model, ...]:
@@ -87,6 +95,10 @@ class Workspace:
         """
         return tuple(m for f in self.files if not f.installed for m in f.models
                      if not (isinstance(m, (Component, ServiceDefinition)) and m.external))
+
+    def components_in_file(self, model_file: str) -> int:
+        """Return how many components of a model file generate a package."""
+        return self._components_per_file.get(model_file, 0)
 
     def model(self, package: str) -> Model | None:
         """Return the model of a package, or of an external component (package/executable)."""
