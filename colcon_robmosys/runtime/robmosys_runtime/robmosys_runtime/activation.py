@@ -15,33 +15,13 @@ from __future__ import annotations
 
 import threading
 import time
-from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
+from typing import Callable, Dict, List, Mapping, Optional, Sequence
 
 from lifecycle_msgs.msg import Transition
-from lifecycle_msgs.srv import ChangeState, GetState
 from rclpy.node import Node
 from robmosys_runtime import levels
 from robmosys_runtime.levels import Outcome
-
-#: transition -> the state a node is in once it went through it
-GOAL_STATES = {Transition.TRANSITION_CONFIGURE: 'inactive',
-               Transition.TRANSITION_ACTIVATE: 'active',
-               Transition.TRANSITION_DEACTIVATE: 'inactive',
-               Transition.TRANSITION_CLEANUP: 'unconfigured'}
-
-#: what the report says of a transition that failed
-VERBS = {Transition.TRANSITION_CONFIGURE: 'configure',
-         Transition.TRANSITION_ACTIVATE: 'activate',
-         Transition.TRANSITION_DEACTIVATE: 'deactivate',
-         Transition.TRANSITION_CLEANUP: 'clean up'}
-
-
-class _Stopped(Exception):
-    """The bring-up was stopped (the launch or the process ends)."""
-
-
-class _Failed(Exception):
-    """An instance that cannot be brought up, and why."""
+from robmosys_runtime.lifecycle_calls import Failed, LifecycleCalls, Stopped
 
 
 class SystemActivation:
@@ -69,16 +49,21 @@ class SystemActivation:
         self._node = node
         self._instances = dict(instances)
         self._after = {name: list(after.get(name, ())) for name in instances}
-        self._timeout = timeout
         self._timeouts = dict(timeouts or {})
-        self._start_timeout = timeout if start_timeout is None else start_timeout
         self._report = report or self._log
         self._states: Dict[str, str] = {}
         self._failed: Dict[str, str] = {}
         self._changed = threading.Condition()
         self._stop = threading.Event()
         self._threads: List[threading.Thread] = []
-        self._clients: Dict[Tuple[str, str], Any] = {}
+        self._calls = LifecycleCalls(
+            node, instances, timeout=timeout,
+            start_timeout=timeout if start_timeout is None else start_timeout,
+            timeouts=self._timeouts, stop=self._stop, failed=self._has_failed)
+
+    def _has_failed(self, name: str) -> bool:
+        with self._changed:
+            return name in self._failed
 
     def _log(self, level: str, text: str) -> None:
         logger = self._node.get_logger()
@@ -125,8 +110,8 @@ class SystemActivation:
     def probe(self, name: str, timeout: float) -> Optional[str]:
         """Return the state an instance tells within timeout, or None (a heartbeat)."""
         try:
-            return self._get_state(name, timeout=timeout)
-        except (_Failed, _Stopped):
+            return self._calls.get_state(name, timeout=timeout)
+        except (Failed, Stopped):
             return None
 
     def wait(self, timeout: Optional[float] = None) -> Outcome:
@@ -192,17 +177,17 @@ class SystemActivation:
     def _bring_down_one(self, name: str, timeout: float, done: List[str]) -> None:
         try:
             wait = min(timeout, self._timeouts.get(name, timeout))
-            state = self._get_state(name, timeout=wait)
+            state = self._calls.get_state(name, timeout=wait)
             if state == 'active':
-                self._change(name, Transition.TRANSITION_DEACTIVATE, wait)
+                self._calls.change(name, Transition.TRANSITION_DEACTIVATE, wait)
                 done.append(f'deactivate {name}')
                 state = 'inactive'
             if state == 'inactive':
-                self._change(name, Transition.TRANSITION_CLEANUP, wait)
+                self._calls.change(name, Transition.TRANSITION_CLEANUP, wait)
                 done.append(f'cleanup {name}')
                 state = 'unconfigured'
             self._set(name, state or 'unknown')
-        except (_Failed, _Stopped) as problem:
+        except (Failed, Stopped) as problem:
             self._report('error', f'instance {name} could not be brought down: {problem}')
 
     def order(self) -> List[str]:
@@ -213,30 +198,30 @@ class SystemActivation:
 
     def _bring_up(self, name: str) -> None:
         try:
-            state = self._get_state(name) or 'unknown'
+            state = self._calls.get_state(name) or 'unknown'
             if state == 'unconfigured':
-                state = self._change(name, Transition.TRANSITION_CONFIGURE)
+                state = self._calls.change(name, Transition.TRANSITION_CONFIGURE)
             if state == 'inactive':
                 self._wait_for_predecessors(name)
-                state = self._change(name, Transition.TRANSITION_ACTIVATE)
+                state = self._calls.change(name, Transition.TRANSITION_ACTIVATE)
                 if state == 'active':
                     self._report('info', f'instance {name} is active')
             self._set(name, state)
             if state != 'active':
                 self._fail(name, f'is {state}, not active')
-        except _Stopped:
+        except Stopped:
             return
-        except _Failed as failure:
+        except Failed as failure:
             self._fail(name, str(failure))
 
     def _wait_for_predecessors(self, name: str) -> None:
         with self._changed:
             while True:
                 if self._stop.is_set():
-                    raise _Stopped()
+                    raise Stopped()
                 if any(other in self._failed for other in self._after[name]):
                     # held back: the report of the failure names it
-                    raise _Stopped()
+                    raise Stopped()
                 if all(self._states.get(other) == 'active' for other in self._after[name]):
                     return
                 self._changed.wait(0.5)
@@ -263,84 +248,3 @@ class SystemActivation:
     def _waiting_for(self, name: str) -> List[str]:
         """Return the instances that come after name, directly or not."""
         return levels.successors(self._after, name)
-
-    # services
-
-    def _call(self, client: Any, request: Any, wait: float) -> Any:
-        """Call a service; return its answer, or None if none came within wait seconds."""
-        answered = threading.Event()
-        future = client.call_async(request)
-        future.add_done_callback(lambda _: answered.set())
-        end = time.monotonic() + wait
-        while not answered.wait(0.1):
-            if self._stop.is_set() or not self._node.context.ok() or \
-                    self._gone(client):
-                client.remove_pending_request(future)
-                raise _Stopped()
-            if time.monotonic() > end:
-                client.remove_pending_request(future)
-                return None
-        return future.result()
-
-    def _gone(self, client: Any) -> bool:
-        """Tell whether the instance of a client failed from outside (its process died)."""
-        with self._changed:
-            return any(client.srv_name.startswith(f'{self._instances[name]}/')
-                       for name in self._failed)
-
-    def _client(self, name: str, srv_type: Any, service: str,
-                timeout: Optional[float] = None) -> Any:
-        with self._changed:
-            client: Any = self._clients.get((name, service))
-            if client is None:
-                client = self._node.create_client(
-                    srv_type, f'{self._instances[name]}/{service}')
-                self._clients[(name, service)] = client
-        timeout = self._start_timeout if timeout is None else timeout
-        deadline = time.monotonic() + timeout
-        # not wait_for_service(): it sleeps in steps of 0.25 s, which every
-        # instance would pay on its way up
-        while not client.service_is_ready():
-            if self._stop.wait(0.02) or not self._node.context.ok() or name in self._failed:
-                raise _Stopped()
-            if time.monotonic() > deadline:
-                raise _Failed(f'did not appear within {timeout:g} s')
-        return client
-
-    def _timeout_of(self, name: str) -> float:
-        return self._timeouts.get(name, self._timeout)
-
-    def _get_state(self, name: str, timeout: Optional[float] = None) -> Optional[str]:
-        """Return the state of an instance; None if it does not answer within timeout."""
-        client = self._client(name, GetState, 'get_state', timeout)
-        own = self._timeout_of(name)
-        deadline = time.monotonic() + (own if timeout is None else timeout)
-        while True:
-            # an answer lost before the two ends matched both ways: ask again
-            answer = self._call(client, GetState.Request(),
-                                2.0 if timeout is None else min(2.0, timeout))
-            if answer is not None:
-                return str(answer.current_state.label)
-            if time.monotonic() > deadline:
-                if timeout is not None:
-                    return None
-                raise _Failed(f'did not tell its state within {own:g} s')
-
-    def _change(self, name: str, transition: int, timeout: Optional[float] = None) -> str:
-        timeout = self._timeout_of(name) if timeout is None else timeout
-        client = self._client(name, ChangeState, 'change_state', timeout)
-        request = ChangeState.Request()
-        request.transition = Transition(id=transition)
-        answer = self._call(client, request, timeout)
-        if answer is None:
-            # the answer may be lost where the transition was not: the state says
-            state = self._get_state(name, timeout=2.0)
-            if state == GOAL_STATES[transition]:
-                return state
-            now = f'it is {state}' if state else 'it does not answer'
-            raise _Failed(f'did not {VERBS[transition]} within {timeout:g} s ({now})')
-        if not answer.success:
-            state = self._get_state(name) or 'unknown'
-            raise _Failed(f'failed to {VERBS[transition]} (it is {state})')
-        # a transition that succeeded ends in its goal state: no need to ask
-        return GOAL_STATES[transition]

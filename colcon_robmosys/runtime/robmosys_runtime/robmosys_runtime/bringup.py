@@ -23,15 +23,14 @@ import os
 import signal
 import sys
 import threading
-from typing import Any, Dict, Optional, Sequence
+from typing import Any, Dict, List, Optional, Sequence
 
 from ament_index_python.packages import get_package_share_directory
-import rclpy
-from rclpy.executors import MultiThreadedExecutor
-from rclpy.utilities import remove_ros_args
-from robmosys_runtime.announce import announce_system
-from robmosys_runtime.manager import Manager, report, say
+from robmosys_runtime.output import say
 from robmosys_runtime.processes import plan_processes, Processes
+
+# rclpy is imported once the instances are starting: they start it too, in
+# parallel (see main)
 
 
 def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
@@ -69,7 +68,7 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
                         help='run every instance in a process of its own')
     parser.add_argument('--description', default=description_file, help=argparse.SUPPRESS)
     # ros2 launch may hand the manager ROS arguments: rclpy reads those
-    args = parser.parse_args(remove_ros_args(list(sys.argv[1:] if argv is None else argv)))
+    args = parser.parse_args(without_ros_args(list(sys.argv[1:] if argv is None else argv)))
     with open(args.description, encoding='utf-8') as stream:
         description = json.load(stream)
     package = description['package']
@@ -77,14 +76,29 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     if args.host:
         return run_host(description, args, params_file)
 
+    # The instances start first: importing rclpy and making the manager's node
+    # take a third of a second, which they spend starting in parallel. Their
+    # exits are watched once the manager is there (Manager.start).
+    processes = Processes(on_exit=None)
+    if not args.attach:
+        groups = plan_processes(description, args.description, params_file,
+                                shared=args.processes)
+        for group, (_, command_line) in groups.items():
+            processes.start(group, command_line)
+
+    import rclpy
+    from rclpy.executors import MultiThreadedExecutor
+    from robmosys_runtime.announce import announce_system
+    from robmosys_runtime.manager import Manager, report, serve
+
     rclpy.init(args=['--ros-args', '-r', f'__node:={package}_bringup'])
     node = rclpy.create_node(f'{package}_bringup')
     announce_system(node, package)
     executor = MultiThreadedExecutor(num_threads=4)
     executor.add_node(node)
-    spinner = threading.Thread(target=executor.spin, daemon=True)
+    spinner = threading.Thread(target=serve, args=(executor,), daemon=True)
     spinner.start()
-    manager = Manager(node, description, params_file, args)
+    manager = Manager(node, description, params_file, args, processes)
     signalled = threading.Event()
 
     def on_signal(signum: int, frame: Any) -> None:
@@ -125,6 +139,25 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
         node.destroy_node()
         rclpy.try_shutdown()
     return status if args.exit_on_failure else 0
+
+
+def without_ros_args(argv: Sequence[str]) -> List[str]:
+    """
+    Return the arguments without their ROS arguments, as rclpy's remove_ros_args does.
+
+    ``--ros-args`` starts them, ``--`` or the next ``--ros-args`` ends them;
+    here without importing rclpy, which the instances are to start with first.
+    """
+    kept: List[str] = []
+    ros = False
+    for arg in argv:
+        if arg == '--ros-args':
+            ros = True
+        elif ros and arg == '--':
+            ros = False
+        elif not ros:
+            kept.append(arg)
+    return kept
 
 
 def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file: str) -> int:

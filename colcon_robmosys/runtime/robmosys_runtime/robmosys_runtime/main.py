@@ -10,6 +10,7 @@ from types import FrameType
 from typing import Callable, List, Optional, Sequence
 
 import rclpy
+from rclpy.exceptions import InvalidHandle
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.node import Node
 
@@ -48,6 +49,9 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     blocking call of one cannot starve the others. Return the exit status (0).
     """
     rclpy.init(args=args)
+    # Made before the executor spins: served while the others were made, the
+    # first nodes of a 50-node process came up later, not sooner (each node
+    # added woke the executor to gather every entity again, under the GIL)
     nodes = [factory() for factory in node_factories]
     threads = executor_threads() if len(nodes) == 1 else \
         max(executor_threads(), 2 * len(nodes))
@@ -55,7 +59,7 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     for node in nodes:
         executor.add_node(node)
     try:
-        executor.spin()
+        spin(executor)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception:  # noqa: B902 - re-raised unless shutting down
@@ -72,6 +76,24 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
             node.destroy_node()
         rclpy.try_shutdown()
     return 0
+
+
+def spin(executor: MultiThreadedExecutor) -> None:
+    """
+    Spin until shutdown, through an entity destroyed while the executor gathered its wait set.
+
+    A transition (cleanup, shutdown) destroys a node's ports in one of the
+    executor's threads while the spinning thread may be gathering them: rclpy
+    then raises InvalidHandle out of spin (ros2/rclpy#1142, #1206), which ended
+    the process and every node it held. The next spin leaves the entity out.
+    """
+    while True:
+        try:
+            executor.spin()
+            return
+        except InvalidHandle:
+            if not executor.context.ok():
+                raise
 
 
 def stop_executor(executor: MultiThreadedExecutor) -> None:

@@ -13,15 +13,18 @@ services and ``/diagnostics``; ``ros2 run <system> bringup``
 from __future__ import annotations
 
 import argparse
-import sys
+import functools
 import threading
-from typing import Any, Dict
+import traceback
+from typing import Any, Callable, Dict, Optional, TypeVar
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
+from rclpy.executors import Executor
 from rclpy.node import Node
 from robmosys_runtime.activation import Outcome, SystemActivation
 from robmosys_runtime.loading import load_into
+from robmosys_runtime.output import say
 from robmosys_runtime.processes import container_node, CPP_GROUP, plan_processes, Processes
 from std_srvs.srv import Trigger
 
@@ -33,6 +36,62 @@ def report(outcome: Outcome, total: int) -> str:
     lines += [f"bringup: {name} held back by {', '.join(by)}"
               for name, by in sorted(outcome.held_back.items())]
     return '\n'.join(lines)
+
+
+def failure_text(error: BaseException) -> str:
+    """Return one line of an exception: what it is, and where it was raised."""
+    frames = traceback.extract_tb(error.__traceback__)
+    where = f' (at {frames[-1].filename}:{frames[-1].lineno})' if frames else ''
+    return f'{type(error).__name__}: {error}{where}'
+
+
+Callback = TypeVar('Callback', bound=Callable[..., Any])
+
+
+def guarded(what: str, callback: Callback) -> Callback:
+    """
+    Wrap a callback of the manager: an exception is reported, not raised.
+
+    rclpy raises a callback's exception out of ``spin``, and the thread that
+    spun the manager ended with it: every service went unanswered and every
+    instance 'did not tell its state'. A service (std_srvs/Trigger) answers
+    with ``success`` false and the exception as its message; any other
+    callback reports each distinct failure once.
+    """
+    told = set()
+
+    @functools.wraps(callback)
+    def call(*args: Any) -> Any:
+        try:
+            return callback(*args)
+        except Exception as error:  # noqa: B902 - the manager serves on
+            text = f'{what} failed: {failure_text(error)}'
+            if text not in told:
+                told.add(text)
+                say('error', text)
+            if len(args) == 2 and hasattr(args[1], 'success'):
+                response = args[1]
+                response.success = False
+                response.message = text
+                return response
+            return None
+    return call  # type: ignore[return-value]
+
+
+def serve(executor: Executor) -> None:
+    """
+    Spin until the executor is shut down, through any callback that raises.
+
+    The manager's own callbacks are :func:`guarded`; this catches what rclpy
+    raises from elsewhere (a client's future, a callback of a library), so
+    that the manager is never left deaf.
+    """
+    while True:
+        try:
+            executor.spin()
+            return
+        except Exception as error:  # noqa: B902 - reported, and spinning goes on
+            say('error', f'a callback of the manager failed: {failure_text(error)}')
 
 
 #: diagnostic level of each state an instance is in
@@ -56,7 +115,7 @@ class Manager:
     """
 
     def __init__(self, node: Node, description: Dict[str, Any], params_file: str,
-                 args: argparse.Namespace) -> None:
+                 args: argparse.Namespace, processes: Optional[Processes] = None) -> None:
         self.node = node
         self.description = description
         self._args = args
@@ -80,20 +139,26 @@ class Manager:
         self._lock = threading.Lock()
         self._respawns: Dict[str, int] = {}
         self._silent: Dict[str, str] = {}
-        self.processes = Processes(self._exited)
+        #: started already, if given: see :func:`start_processes`
+        self.processes = processes or Processes(self._exited)
+        self.processes.on_exit = self._exited
         group = MutuallyExclusiveCallbackGroup()
         for service, answer in (('bring_up', self._bring_up), ('bring_down', self._bring_down),
                                 ('report', self._report)):
-            node.create_service(Trigger, f'~/{service}', answer, callback_group=group)
+            node.create_service(Trigger, f'~/{service}', guarded(service, answer),
+                                callback_group=group)
         self._diagnostics = node.create_publisher(DiagnosticArray, '/diagnostics', 10)
-        node.create_timer(args.diagnostics_period, self.publish_diagnostics)
+        node.create_timer(args.diagnostics_period,
+                          guarded('publishing /diagnostics', self.publish_diagnostics))
         if args.heartbeat > 0:
             threading.Thread(target=self._heartbeat, daemon=True, name='heartbeat').start()
 
     def start(self) -> None:
         """Start the processes of this host and bring every managed instance up."""
+        started = self.processes.started()
         for group, (_, args) in self.groups.items():
-            self.processes.start(group, args)
+            if not started:
+                self.processes.start(group, args)
             if group == CPP_GROUP:
                 self._load(group)
         self.processes.watch()
@@ -247,18 +312,3 @@ class Manager:
                     self.activation.instance_failed(name, f'is {answer}, not active')
                 elif self._silent.pop(name, None) is not None:
                     say('info', f'instance {name} answers again (heartbeat)')
-
-
-#: one line at a time: the instances of a level are brought up in parallel threads
-_OUTPUT = threading.Lock()
-
-
-def say(level: str, text: str) -> None:
-    """Print a line of the bring-up: errors on stderr, the rest on stdout."""
-    # The line and its end go in one write, under a lock: print() writes them
-    # apart, and lines of parallel transitions ran into each other.
-    line = (f'bringup: {level}: {text}' if level == 'error' else f'bringup: {text}') + '\n'
-    stream = sys.stderr if level == 'error' else sys.stdout
-    with _OUTPUT:
-        stream.write(line)
-        stream.flush()

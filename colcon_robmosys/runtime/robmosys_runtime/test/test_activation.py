@@ -89,9 +89,11 @@ def test_an_instance_that_never_answers_is_reported_within_its_timeout(spinning)
 
 
 def test_an_instance_that_never_appears_is_reported(spinning):
-    activation, _, reports = _activation(spinning, ['here'], {'here': []}, timeout=1.0)
-    activation._instances['absent'] = '/system/absent'
-    activation._after['absent'] = []
+    spinning.add(Instance('here', spinning.context, []))
+    driver = spinning.add(LifecycleNode('driver', context=spinning.context))
+    activation = SystemActivation(
+        driver, {'here': '/system/here', 'absent': '/system/absent'}, {}, timeout=1.0,
+        report=lambda level, text: None)
     activation.start()
     outcome = activation.wait(30)
     assert outcome.failed == {'absent': 'did not appear within 1 s'}
@@ -112,7 +114,7 @@ def test_a_stopped_bring_up_ends_quietly(spinning):
 
 def test_lines_of_parallel_transitions_never_run_into_each_other(capfd):
     """Threads that report at once give whole lines, one each (print() wrote two pieces)."""
-    from robmosys_runtime.manager import say
+    from robmosys_runtime.output import say
     barrier = threading.Barrier(16)
 
     def report(thread):

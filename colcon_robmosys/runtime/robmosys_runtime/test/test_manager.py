@@ -1,0 +1,110 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""The system manager serves on through a callback that raises, on real rclpy."""
+
+import threading
+
+import rclpy
+from rclpy.executors import MultiThreadedExecutor, SingleThreadedExecutor
+from robmosys_runtime import manager
+from robmosys_runtime.manager import guarded, serve
+from std_srvs.srv import Trigger
+
+
+class Served:
+    """A node with services, spun by :func:`serve` in a thread, and a client node."""
+
+    def __init__(self, context) -> None:
+        self.node = rclpy.create_node('served', context=context)
+        self.client_node = rclpy.create_node('asking', context=context)
+        self.executor = MultiThreadedExecutor(num_threads=2, context=context)
+        self.executor.add_node(self.node)
+        self.asking = SingleThreadedExecutor(context=context)
+        self.asking.add_node(self.client_node)
+        self.thread = threading.Thread(target=serve, args=(self.executor,), daemon=True)
+
+    def call(self, service: str, timeout: float = 10.0):
+        """Call a Trigger service; return its response, None if none came."""
+        client = self.client_node.create_client(Trigger, service)
+        assert client.wait_for_service(timeout_sec=timeout)
+        future = client.call_async(Trigger.Request())
+        self.asking.spin_until_future_complete(future, timeout_sec=timeout)
+        self.client_node.destroy_client(client)
+        return future.result() if future.done() else None
+
+
+def _broken(request, response):
+    raise KeyError('laser_spare')
+
+
+def _fine(request, response):
+    response.success = True
+    response.message = 'fine'
+    return response
+
+
+def test_a_failing_service_is_answered_reported_and_the_others_serve_on(monkeypatch):
+    said = []
+    monkeypatch.setattr(manager, 'say', lambda level, text: said.append((level, text)))
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    served = Served(context)
+    try:
+        served.node.create_service(Trigger, 'guarded', guarded('report', _broken))
+        # a callback nobody guarded: rclpy raises it out of spin, serve spins on
+        served.node.create_service(Trigger, 'unguarded', _broken)
+        served.node.create_service(Trigger, 'fine', _fine)
+        served.thread.start()
+
+        answer = served.call('guarded')
+        assert answer is not None and not answer.success
+        assert answer.message.startswith("report failed: KeyError: 'laser_spare' (at ")
+        assert answer.message.endswith(f':{_broken.__code__.co_firstlineno + 1})')
+        # no answer comes from a callback that raised, but the executor serves on
+        assert served.call('unguarded', timeout=3.0) is None
+        for _ in range(2):
+            answer = served.call('fine')
+            assert answer is not None and answer.success and answer.message == 'fine'
+        assert served.thread.is_alive()
+        assert said[0][0] == 'error'
+        assert said[0][1].startswith("report failed: KeyError: 'laser_spare' (at ")
+        assert any(text.startswith("a callback of the manager failed: KeyError: 'laser_spare'")
+                   for _, text in said[1:])
+    finally:
+        served.executor.shutdown()
+        served.asking.shutdown()
+        served.node.destroy_node()
+        served.client_node.destroy_node()
+        rclpy.try_shutdown(context=context)
+    served.thread.join(10)
+    assert not served.thread.is_alive()
+
+
+def test_a_failing_timer_callback_is_reported_once(monkeypatch):
+    said = []
+    monkeypatch.setattr(manager, 'say', lambda level, text: said.append((level, text)))
+    calls = []
+
+    def publish():
+        calls.append(1)
+        raise RuntimeError('no publisher')
+
+    tick = guarded('publishing /diagnostics', publish)
+    for _ in range(3):
+        assert tick() is None
+    assert len(calls) == 3
+    assert [level for level, _ in said] == ['error']
+    assert said[0][1].startswith('publishing /diagnostics failed: RuntimeError: no publisher')
+
+
+def test_ros_arguments_are_left_out_as_rclpy_leaves_them_out():
+    from rclpy.utilities import remove_ros_args
+    from robmosys_runtime.bringup import without_ros_args
+    for argv in ([], ['--attach'],
+                 ['--attach', '--ros-args', '-r', '__node:=x', '--log-level', 'warn'],
+                 ['--ros-args', '-r', 'a:=b', '--', '--timeout', '3'],
+                 ['--timeout', '3', '--ros-args', '-p', 'x:=1', '--', '--attach',
+                  '--ros-args', '--log-level', 'debug'],
+                 ['--', '--attach']):
+        # rclpy takes the first argument for the program's name
+        assert without_ros_args(argv) == remove_ros_args(['bringup', *argv])[1:], argv

@@ -1,0 +1,93 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""A component's process spins on through rclpy's race with destroyed entities."""
+
+import threading
+
+from conftest import wait_until
+import rclpy
+from rclpy.exceptions import InvalidHandle
+from rclpy.executors import MultiThreadedExecutor
+from rclpy.waitable import NumberOfEntities, Waitable
+from robmosys_runtime.main import spin
+
+
+class DestroyedWhileGathered(Waitable):
+    """
+    What a port destroyed by a transition looks like to the spinning thread, once.
+
+    rclpy's executor marks a waitable in use, then adds it to its wait set; a
+    port destroyed in between (its event handler) raises InvalidHandle there,
+    out of spin (ros2/rclpy#1142, #1206). This one does so the first time.
+    """
+
+    def __init__(self, callback_group) -> None:
+        super().__init__(callback_group)
+        self.raised = threading.Event()
+
+    def __enter__(self) -> None:
+        return None
+
+    def __exit__(self, *exc_info) -> None:
+        return None
+
+    def is_ready(self, wait_set) -> bool:
+        return False
+
+    def take_data(self) -> None:
+        return None
+
+    async def execute(self, taken_data) -> None:
+        return None
+
+    def get_num_entities(self) -> NumberOfEntities:
+        return NumberOfEntities()
+
+    def add_to_wait_set(self, wait_set) -> None:
+        if not self.raised.is_set():
+            self.raised.set()
+            raise InvalidHandle('cannot use Destroyable because destruction was requested')
+
+
+def _spun(spinner):
+    """Spin a node with a 20 ms timer and the waitable above; return the ticks and the end."""
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    node = rclpy.create_node('spun', context=context)
+    ticks = []
+    node.create_timer(0.02, lambda: ticks.append(1))
+    waitable = DestroyedWhileGathered(node.default_callback_group)
+    node.add_waitable(waitable)
+    executor = MultiThreadedExecutor(num_threads=2, context=context)
+    executor.add_node(node)
+    ended = []
+
+    def run():
+        try:
+            spinner(executor)
+        except InvalidHandle as error:
+            ended.append(error)
+
+    thread = threading.Thread(target=run, daemon=True)
+    thread.start()
+    try:
+        assert waitable.raised.wait(10)
+        # the timer goes on ticking, or the spinning ended with the race
+        wait_until(lambda: len(ticks) >= 5 or ended, timeout=10)
+        return len(ticks), ended
+    finally:
+        executor.shutdown()
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
+        thread.join(10)
+
+
+def test_spin_goes_on_through_an_entity_destroyed_while_gathered():
+    ticks, ended = _spun(spin)
+    assert ticks >= 5 and not ended
+
+
+def test_rclpy_alone_ends_spinning_there():
+    # what spin() is for: without it, the process ended with all its nodes
+    ticks, ended = _spun(lambda executor: executor.spin())
+    assert ended and ticks < 5
