@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import os
 import signal
+import threading
 from types import FrameType
 from typing import Callable, List, Optional, Sequence
 
@@ -23,6 +24,24 @@ def executor_threads() -> int:
     answer arrives on another.
     """
     return max(4, os.cpu_count() or 1)
+
+
+#: set once rclpy handles SIGINT (see _interrupted)
+_rclpy_handles_sigint = threading.Event()
+
+
+def _interrupted(signum: int, frame: Optional[FrameType]) -> None:
+    """
+    Python's part of SIGINT in a component's process: nothing, once rclpy handles it.
+
+    rclpy's handler shuts the context down, which ends spin(), and then calls
+    the handler Python had: Python's own raised KeyboardInterrupt wherever the
+    main thread then was, even in a __del__ of the shutdown that followed
+    ("Exception ignored in ... KeyboardInterrupt", with a traceback). Before
+    rclpy is initialised, SIGINT interrupts as usual.
+    """
+    if not _rclpy_handles_sigint.is_set():
+        signal.default_int_handler(signum, frame)
 
 
 def _exit_at_once(signum: int, frame: Optional[FrameType]) -> None:
@@ -48,7 +67,9 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     Every node has the threads a node of its own would have to spare, so a
     blocking call of one cannot starve the others. Return the exit status (0).
     """
+    signal.signal(signal.SIGINT, _interrupted)
     rclpy.init(args=args)
+    _rclpy_handles_sigint.set()
     # Made before the executor spins: served while the others were made, the
     # first nodes of a 50-node process came up later, not sooner (each node
     # added woke the executor to gather every entity again, under the GIL)

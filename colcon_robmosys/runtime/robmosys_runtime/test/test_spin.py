@@ -91,3 +91,19 @@ def test_rclpy_alone_ends_spinning_there():
     # what spin() is for: without it, the process ended with all its nodes
     ticks, ended = _spun(lambda executor: executor.spin())
     assert ended and ticks < 5
+
+
+def test_sigint_interrupts_python_only_until_rclpy_handles_it(monkeypatch):
+    import signal
+
+    from robmosys_runtime import main
+    monkeypatch.setattr(main, '_rclpy_handles_sigint', threading.Event())
+    try:
+        main._interrupted(signal.SIGINT, None)
+    except KeyboardInterrupt:
+        pass
+    else:
+        raise AssertionError('SIGINT before rclpy.init did not interrupt')
+    # then rclpy's handler shuts the context down and calls this one: it is quiet
+    main._rclpy_handles_sigint.set()
+    assert main._interrupted(signal.SIGINT, None) is None
