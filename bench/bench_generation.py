@@ -207,11 +207,16 @@ def _table(results: list[Samples], which: str) -> str:
             f'{fastest.total:.2f}', ratio(fastest.total, base),
             f'{fastest.cpu:.2f}', ratio(fastest.cpu, base_cpu),
         ])
+        if which == 'first':
+            plain = min(p[0] for p in entry.plain) * 1000 / (entry.components * entry.batch)
+            rows[-1] += [f'{plain:.2f}', ratio(fastest.total, plain)]
     step = 'render+write' if which == 'first' else 'render+compare'
     header = ['N components', 'packages', 'files', 'samples x workspaces',
               'load+validate ms/comp',
               'plan ms/comp', f'{step} ms/comp', 'total ms/comp', 'ratio to N0',
               'CPU ms/comp', 'CPU ratio to N0']
+    if which == 'first':
+        header += ['plain writing ms/comp', 'total / plain writing']
     return table(header, rows)
 
 
