@@ -51,7 +51,6 @@ def _diagnostic_lines(stderr: str) -> list[str]:
 
 @pytest.mark.parametrize('verb', [
     ['build', '--packages-select', 'sender', 'receiver'],
-    ['list'],
     ['robmosys-generate', '--validate-only'],
 ])
 def test_each_error_is_one_bare_line_once(workspace, verb):
@@ -62,8 +61,7 @@ def test_each_error_is_one_bare_line_once(workspace, verb):
     # before the path (no logger prefix), so a GCC problem matcher reads it
     assert sorted(lines) == sorted(expected), result.stderr
     assert str(model) not in result.stdout
-    if verb[0] != 'list':
-        assert result.returncode != 0
+    assert result.returncode != 0
     if verb[0] == 'build':
         # colcon's summary still says which packages failed
         assert re.search(r'2 packages failed: receiver sender', result.stdout), result.stdout
@@ -90,6 +88,16 @@ def test_a_regeneration_with_no_change_touches_nothing(workspace):
                      if stamps.get(p) != after[p] and 'log' not in p.relative_to(workspace).parts)
     assert changed == []
     assert (workspace / 'gen' / 'COLCON_IGNORE').is_file()
+
+
+def test_colcon_list_leaves_a_models_errors_to_the_build(workspace):
+    # colcon list names packages, as colcon-ros does of a package.xml it can
+    # read: the check runs in the build (issue 16, P2; tests/test_discovery.py)
+    _break_both_components(workspace)
+    result = colcon(['list', '--names-only'], cwd=workspace)
+    assert result.returncode == 0, result.stderr
+    assert {'sender', 'receiver'} <= set(result.stdout.split())
+    assert _diagnostic_lines(result.stderr) == []
 
 
 def test_colcon_info_keeps_each_package_small(workspace):

@@ -2,6 +2,7 @@
 # Licensed under the Apache License, Version 2.0
 
 from pathlib import Path
+import threading
 
 from colcon_core.dependency_descriptor import DependencyDescriptor
 from colcon_core.logging import colcon_logger
@@ -13,8 +14,12 @@ from colcon_robmosys.check import load_workspace
 from colcon_robmosys.check.cache import CACHE_DIR
 from colcon_robmosys.check.cache import ModelCache
 from colcon_robmosys.errors import print_diagnostics
-from colcon_robmosys.mapping.cpp import cpp_client_packages
+from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
+from colcon_robmosys.mapping.portkinds import port_kind
 from colcon_robmosys.model.files import model_dependencies
+from colcon_robmosys.model.outline import NoOutline
+from colcon_robmosys.model.outline import outline_file
+from colcon_robmosys.model.outline import with_subsystems
 from colcon_robmosys.model.types import Component
 from colcon_robmosys.model.types import Language
 from colcon_robmosys.model.types import ServiceDefinition
@@ -33,21 +38,47 @@ METADATA_KEY = 'robmosys'
 class CheckedModels:
     """The checked workspace, shared by the descriptors of its packages.
 
+    Checked when first asked for (the build of a package, robmosys-generate),
+    once for all of them, and its errors printed then; discovery itself only
+    outlines the model files (model/outline.py), unless an outline cannot
+    tell what the check would.
+
     ``colcon info`` prints every metadata value: this one reads as a line,
     not as the whole workspace.
     """
 
-    __slots__ = ('result', )
+    __slots__ = ('_model_files', '_cache', '_result', '_lock')
 
-    def __init__(self, result):  # noqa: D107
-        self.result = result
+    def __init__(self, model_files, cache):  # noqa: D107
+        self._model_files = model_files
+        self._cache = cache
+        self._result = None
+        self._lock = threading.Lock()
+
+    @property
+    def result(self):
+        """Return the check stage's result, checking the workspace the first time."""
+        with self._lock:
+            if self._result is None:
+                self._result = load_workspace(
+                    self._model_files, cache=self._cache)
+                # bare compiler-style lines, once; warnings are told by the
+                # build of their package and by robmosys-generate, and only
+                # for the packages selected
+                print_diagnostics(
+                    d for d in self._result.diagnostics
+                    if d.severity == 'error')
+            return self._result
 
     def __str__(self):
-        errors = len(self.result.errors)
-        return (f'{len(self.result.workspace.models)} checked models, '
-                f'{errors} error(s)')
+        # what colcon info prints: the check's verdict
+        result = self.result
+        return (f'{len(result.workspace.models)} checked models, '
+                f'{len(result.errors)} error(s)')
 
-    __repr__ = __str__
+    def __repr__(self):
+        state = 'checked' if self._result is not None else 'not checked yet'
+        return f'<CheckedModels of {len(self._model_files)} model files, {state}>'
 
 
 def checked_result(descriptor):
@@ -58,9 +89,12 @@ def checked_result(descriptor):
 class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
     """Turn every recorded model file into one package per model.
 
-    The models of the whole workspace are loaded and validated together,
-    since components use service definitions and systems use components.
-    Nothing is written: files are only written by the build and the verb.
+    Discovery reads what colcon needs of each model (names, kinds,
+    dependencies) from outlines of the files; the models of the whole
+    workspace are loaded and checked together, since components use service
+    definitions and systems use components, once, by the first build of a
+    package or by robmosys-generate. Nothing is written: files are only
+    written by the build and the verb.
     """
 
     # after the crawling discovery extensions (100 and up) have identified
@@ -85,56 +119,123 @@ class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):
                     runtime_folders |= extension.runtime_folders
         if not model_files:
             return set()
-        result = load_workspace(model_files, cache=model_cache(args))
-        shared = CheckedModels(result)
-        # errors now, whatever the verb, since they stop what it does: bare
-        # compiler-style lines, once; warnings are told by the build of their
-        # package and by robmosys-generate, and only for the packages selected
-        print_diagnostics(
-            d for d in result.diagnostics if d.severity == 'error')
-        descriptors = set()
-        # not external components (a hand-written package), nor models an
-        # underlay installed (built there)
-        for model in result.workspace.generated_models:
-            kind = 'interfaces' if isinstance(model, ServiceDefinition) else \
-                'component' if isinstance(model, Component) else 'system'
-            dependencies = model_dependencies(model)
-            if not isinstance(model, ServiceDefinition):
-                # components run on it; systems activate with it
-                dependencies += (RUNTIME_PACKAGE, )
-            if isinstance(model, Component) and \
-                    model.language is Language.CPP:
-                # built before, if the workspace builds rclcpp itself; the
-                # package selection skips the component where none has it
-                dependencies += cpp_client_packages(model)
-            descriptors.add(_descriptor(
-                model.info.model_file, model.package, kind,
-                dependencies, shared))
-        generating = {m.info.model_file for m in
-                      result.workspace.generated_models}
-        for model_file, declared in sorted(result.broken_files.items()):
-            # the build of these packages reports the errors and fails;
-            # a file too broken to name any is named after its folder,
-            # unless a package it generates reports them (a broken external
-            # component beside a system)
-            if not declared and model_file in generating:
-                continue
-            for name, kind in declared or [
-                    (Path(model_file).parent.name, 'invalid')]:
-                descriptors.add(
-                    _descriptor(model_file, name, kind, (), shared))
-        # a file of external models only (nothing generated) with errors:
-        # named after its folder too, so that a build reports them and fails
-        ours = {str(path) for path in model_files}
-        for model_file in sorted({d.location.path for d in result.errors} &
-                                 ours - generating -
-                                 result.broken_files.keys()):
-            descriptors.add(_descriptor(
-                model_file, Path(model_file).parent.name, 'invalid', (),
-                shared))
+        shared = CheckedModels(model_files, model_cache(args))
+        outlines = outline_workspace(model_files)
+        if outlines is None:
+            # the check tells what the packages are: now, whatever the verb,
+            # and its errors with it
+            descriptors = checked_descriptors(shared.result, model_files, shared)
+        else:
+            descriptors = outlined_descriptors(outlines, shared)
         if not runtime_folders and _runtime_needed(args):
             descriptors.add(_runtime_descriptor())
         return descriptors
+
+
+def outline_workspace(model_files):
+    """Return the outlines of the model files, or None where only the check can tell.
+
+    None also for two files declaring one package or for a dependency cycle:
+    the check reports each with its lines, where colcon would only stop.
+    """
+    outlines, names = {}, {}
+    for model_file in sorted(model_files):
+        try:
+            outlines[model_file] = outline_file(model_file)
+        except NoOutline:
+            logger.debug(f"'{model_file}' is checked to tell its packages")
+            return None
+        for package in outlines[model_file]:
+            if names.setdefault(package.name, package) is not package:
+                return None
+    if _has_cycle({name: [d for d in package.dependencies if d in names]
+                   for name, package in names.items()}):
+        return None
+    expanded = with_subsystems(names)
+    return {model_file: [expanded[p.name] for p in packages]
+            for model_file, packages in outlines.items()}
+
+
+def outlined_descriptors(outlines, shared):
+    """Return the descriptors of the packages the outlines of the model files name."""
+    return {
+        _descriptor(model_file, o.name, o.kind,
+                    _dependencies(o.kind, o.dependencies, o.cpp, o.uses_actions),
+                    shared)
+        for model_file, packages in outlines.items() for o in packages}
+
+
+def _has_cycle(graph):
+    """Return whether a graph (node -> successors) has a cycle."""
+    # Kahn: what never gets to no remaining predecessor lies on a cycle
+    waiting = dict.fromkeys(graph, 0)
+    for successors in graph.values():
+        for node in successors:
+            waiting[node] += 1
+    ready = [node for node, count in waiting.items() if not count]
+    done = 0
+    while ready:
+        done += 1
+        for node in graph[ready.pop()]:
+            waiting[node] -= 1
+            if not waiting[node]:
+                ready.append(node)
+    return done < len(graph)
+
+
+def _dependencies(kind, dependencies, cpp=False, uses_actions=False):
+    """Return a generated package's dependencies, those of its model's and its runtime's."""
+    dependencies = tuple(dependencies)
+    if kind in ('component', 'system'):
+        # components run on it; systems activate with it
+        dependencies += (RUNTIME_PACKAGE, )
+    if kind == 'component' and cpp:
+        # built before, if the workspace builds rclcpp itself; the package
+        # selection skips the component where none has it
+        dependencies += CPP_CLIENT_PACKAGES + (
+            ('rclcpp_action', ) if uses_actions else ())
+    return dependencies
+
+
+def checked_descriptors(result, model_files, shared):
+    """Return the descriptors of the packages the check stage found."""
+    descriptors = set()
+    # not external components (a hand-written package), nor models an
+    # underlay installed (built there)
+    for model in result.workspace.generated_models:
+        kind = 'interfaces' if isinstance(model, ServiceDefinition) else \
+            'component' if isinstance(model, Component) else 'system'
+        descriptors.add(_descriptor(
+            model.info.model_file, model.package, kind,
+            _dependencies(kind, model_dependencies(model),
+                          isinstance(model, Component) and
+                          model.language is Language.CPP,
+                          isinstance(model, Component) and
+                          any(port_kind(p).uses_actions for p in model.ports)),
+            shared))
+    generating = {m.info.model_file for m in
+                  result.workspace.generated_models}
+    for model_file, declared in sorted(result.broken_files.items()):
+        # the build of these packages reports the errors and fails;
+        # a file too broken to name any is named after its folder,
+        # unless a package it generates reports them (a broken external
+        # component beside a system)
+        if not declared and model_file in generating:
+            continue
+        for name, kind in declared or [
+                (Path(model_file).parent.name, 'invalid')]:
+            descriptors.add(
+                _descriptor(model_file, name, kind, (), shared))
+    # a file of external models only (nothing generated) with errors:
+    # named after its folder too, so that a build reports them and fails
+    ours = {str(path) for path in model_files}
+    for model_file in sorted({d.location.path for d in result.errors} &
+                             ours - generating -
+                             result.broken_files.keys()):
+        descriptors.add(_descriptor(
+            model_file, Path(model_file).parent.name, 'invalid', (),
+            shared))
+    return descriptors
 
 
 def model_cache(args):

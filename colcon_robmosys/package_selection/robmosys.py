@@ -9,6 +9,7 @@ from colcon_core.package_selection import PackageSelectionExtensionPoint
 from colcon_core.plugin_system import satisfies_version
 
 from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
+from colcon_robmosys.package_discovery.robmosys import checked_result
 
 #: What a C++ component needs from a prefix and PyPI has not.
 CPP_PREFIX_PACKAGES = CPP_CLIENT_PACKAGES + ('rclcpp_action', )
@@ -21,7 +22,7 @@ _BUILDING_VERBS = ('build', 'test')
 
 
 class RobmosysPackageSelection(PackageSelectionExtensionPoint):
-    """Skip C++ components where no prefix provides rclcpp.
+    """Skip C++ components where no prefix provides rclcpp, unless their model has errors.
 
     rclcpp is not on PyPI: a workspace of models still builds everything else
     on a machine without it, and colcon says which packages it skipped and
@@ -50,6 +51,10 @@ class RobmosysPackageSelection(PackageSelectionExtensionPoint):
             needs = [name for name in CPP_PREFIX_PACKAGES
                      if name in depends and name not in in_workspace]
             missing = missing_prefix_packages(needs)
+            if missing and _has_errors(pkg):
+                # its build reports them and fails: a broken model is not
+                # let through as skipped
+                continue
             if missing:
                 decorator.selected = False
                 skipped.add(pkg.name)
@@ -73,6 +78,13 @@ class RobmosysPackageSelection(PackageSelectionExtensionPoint):
             if recursive is not None:
                 decorator.recursive_dependencies = [
                     d for d in recursive if d not in skipped]
+
+
+def _has_errors(pkg):
+    """Return whether the model of a package of ours has errors (the check runs now)."""
+    model_file = pkg.metadata['robmosys_model_file']
+    result = checked_result(pkg)
+    return bool(result.errors_of(model_file)) or model_file in result.broken_files
 
 
 def missing_prefix_packages(names, dependency_prefixes=(), environ=None):
