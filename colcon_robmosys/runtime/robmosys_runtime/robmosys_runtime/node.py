@@ -70,6 +70,7 @@ class ComponentNode(LifecycleNode):
         :param component: a generated component's package, announced with its ports
         """
         super().__init__(node_name, **kwargs)
+        self._no_transition_after_shutdown()
         if component is not None:
             announce_component(self, component, ports)
         self._active = False
@@ -79,6 +80,30 @@ class ComponentNode(LifecycleNode):
         self._timers: List[Timer] = []
         for name in ports:
             setattr(self, name, None)
+
+    def _no_transition_after_shutdown(self) -> None:
+        """
+        Answer a transition requested once SIGINT or SIGTERM shut the context down: refused.
+
+        rclpy would start it: rcl moves the state machine (to activating, say),
+        fails to publish the transition event on the shut down context, and
+        rclpy logs 'Unable to start transition' with the node left in the
+        intermediate state. A request taken from DDS after the signal (the
+        executor's threads still run) met this in one shutdown in five.
+        """
+        # rclpy keeps the service (7.1 and 9.1); without it, nothing to guard
+        service = getattr(self, '_service_change_state', None)
+        if service is None:
+            return
+        change_state = service.callback
+
+        def answer(request: Any, response: Any) -> Any:
+            if not self.context.ok():
+                response.success = False
+                return response
+            return change_state(request, response)
+
+        service.callback = answer
 
     @property
     def active(self) -> bool:

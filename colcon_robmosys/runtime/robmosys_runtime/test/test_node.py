@@ -5,6 +5,7 @@
 import threading
 
 from conftest import wait_until
+import rclpy
 from rclpy.lifecycle import TransitionCallbackReturn
 from rclpy.node import Node
 from rclpy.qos import QoSProfile
@@ -127,3 +128,29 @@ def test_every_activity_has_its_own_exclusive_group(spinning):
     assert set(groups) == {'Tick', 'OnCount', 'Answer'}
     assert len({id(g) for g in groups.values()}) == 3
     node.destroy_node()
+
+
+def test_a_transition_requested_after_shutdown_is_refused(capfd):
+    # SIGINT or SIGTERM shuts the context down while the executor's threads
+    # still run: a change_state request taken then is answered as refused,
+    # rather than started (rclpy logged 'Unable to start transition' and left
+    # the node in 'activating': seen in one shutdown in five under load)
+    from lifecycle_msgs.msg import Transition
+    from lifecycle_msgs.srv import ChangeState, GetState
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    node = Counter(context)
+    services = {s.srv_name.rsplit('/', 1)[-1]: s for s in node.services}
+
+    def call(name, srv_type, **fields):
+        # as rclpy's executor does with a request it took
+        return services[name].callback(srv_type.Request(**fields), srv_type.Response())
+
+    configure = Transition(id=Transition.TRANSITION_CONFIGURE)
+    activate = Transition(id=Transition.TRANSITION_ACTIVATE)
+    assert call('change_state', ChangeState, transition=configure).success
+    rclpy.shutdown(context=context)
+    assert not call('change_state', ChangeState, transition=activate).success
+    assert call('get_state', GetState).current_state.label == 'inactive'
+    node.destroy_node()
+    assert 'Unable to start transition' not in capfd.readouterr().err
