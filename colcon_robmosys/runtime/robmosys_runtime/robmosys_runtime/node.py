@@ -25,14 +25,10 @@ from robmosys_runtime.announce import announce_component
 from robmosys_runtime.events import EventClient, EventServer
 from robmosys_runtime.ports import ActionClientPort, ActionServer, QueryClient
 from robmosys_runtime.qos import overridable
+from robmosys_runtime.transitions import refuse_transitions_after_shutdown, TRANSITION_VERBS
 
 Function = Callable[..., Any]
 Entity = TypeVar('Entity')
-
-#: What each transition's failure is logged as.
-_VERBS = {
-    'on_configure': 'configure', 'on_activate': 'activate', 'on_deactivate': 'deactivate',
-    'on_cleanup': 'cleanup', 'on_shutdown': 'shutdown', 'on_error': 'error handling'}
 
 
 class Activity:
@@ -70,7 +66,7 @@ class ComponentNode(LifecycleNode):
         :param component: a generated component's package, announced with its ports
         """
         super().__init__(node_name, **kwargs)
-        self._no_transition_after_shutdown()
+        refuse_transitions_after_shutdown(self)
         if component is not None:
             announce_component(self, component, ports)
         self._active = False
@@ -80,30 +76,6 @@ class ComponentNode(LifecycleNode):
         self._timers: List[Timer] = []
         for name in ports:
             setattr(self, name, None)
-
-    def _no_transition_after_shutdown(self) -> None:
-        """
-        Answer a transition requested once SIGINT or SIGTERM shut the context down: refused.
-
-        rclpy would start it: rcl moves the state machine (to activating, say),
-        fails to publish the transition event on the shut down context, and
-        rclpy logs 'Unable to start transition' with the node left in the
-        intermediate state. A request taken from DDS after the signal (the
-        executor's threads still run) met this in one shutdown in five.
-        """
-        # rclpy keeps the service (7.1 and 9.1); without it, nothing to guard
-        service = getattr(self, '_service_change_state', None)
-        if service is None:
-            return
-        change_state = service.callback
-
-        def answer(request: Any, response: Any) -> Any:
-            if not self.context.ok():
-                response.success = False
-                return response
-            return change_state(request, response)
-
-        service.callback = answer
 
     @property
     def active(self) -> bool:
@@ -353,7 +325,8 @@ class ComponentNode(LifecycleNode):
             function()
 
     def _transition_failed(self, transition: str) -> None:
-        self.get_logger().error(f'{_VERBS[transition]} failed:\n' + traceback.format_exc())
+        self.get_logger().error(
+            f'{TRANSITION_VERBS[transition]} failed:\n' + traceback.format_exc())
 
     def _wait_for_activities(self, timeout: float = 5.0) -> None:
         """Wait until no function of an activity runs: after it, none starts."""
