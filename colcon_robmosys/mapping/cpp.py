@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import re
 import textwrap
+from typing import Iterable
 
 from colcon_robmosys.mapping.common import banner_of, package_xml, unique
 from colcon_robmosys.mapping.component import (
@@ -28,7 +29,7 @@ from colcon_robmosys.mapping.cpp_context import (
 from colcon_robmosys.mapping.cpp_parameters import (
     cpp_parameter, cpp_parameter_groups, PARAMETER_TYPES)
 from colcon_robmosys.mapping.parameters import parameter_page
-from colcon_robmosys.mapping.portkinds import Delivery, Entity, port_kind, Returns
+from colcon_robmosys.mapping.portkinds import Delivery, Entity, port_kind, PortKind, Returns
 from colcon_robmosys.mapping.qos import resolve_qos
 from colcon_robmosys.mapping.userfiles import user_folders, UserFolders
 from colcon_robmosys.model.types import Component, InterfaceRef, QoS
@@ -39,7 +40,12 @@ CPP_CLIENT_PACKAGES = ('rclcpp', 'rclcpp_lifecycle', 'rclcpp_components')
 
 def cpp_client_packages(component: Component) -> tuple[str, ...]:
     """Return the rclcpp packages a C++ component is built with."""
-    uses_actions = any(port_kind(p).uses_actions for p in component.ports)
+    return rclcpp_packages(port_kind(p) for p in component.ports)
+
+
+def rclcpp_packages(kinds: Iterable[PortKind]) -> tuple[str, ...]:
+    """Return the rclcpp packages a C++ component with ports of these kinds is built with."""
+    uses_actions = any(kind.uses_actions for kind in kinds)
     return CPP_CLIENT_PACKAGES + (('rclcpp_action',) if uses_actions else ())
 
 

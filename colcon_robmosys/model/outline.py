@@ -25,13 +25,10 @@ from pathlib import Path
 from typing import Any, Iterator
 
 from colcon_robmosys.errors import RobmosysError
-from colcon_robmosys.model.fieldtypes import parse_field_type, TypeNameError
+from colcon_robmosys.model.base import Pattern, PATTERN_INTERFACE, Role
+from colcon_robmosys.model.fieldtypes import parse_field_type, parse_interface, TypeNameError
 from colcon_robmosys.model.files import MODEL_KINDS
 from colcon_robmosys.model.loader import load_file
-
-#: The patterns whose ports are made of ROS 2 actions (mapping/portkinds.py:
-#: uses_actions), for which a C++ component also needs rclcpp_action.
-ACTION_PATTERNS = frozenset({'action', 'event'})
 
 #: The parts of each section of a service definition that hold structures.
 _STRUCTURES = {'communication_objects': (None, ), 'queries': ('request', 'answer'),
@@ -53,10 +50,10 @@ class PackageOutline:
     #: the packages it needs, as model_dependencies() gives them of the
     #: checked model
     dependencies: tuple[str, ...]
-    #: a C++ component: its ports' patterns decide which rclcpp packages
-    #: it is built with
+    #: a C++ component: the pattern and role of its ports decide which
+    #: rclcpp packages it is built with (mapping/portkinds.py)
     cpp: bool = False
-    uses_actions: bool = False
+    ports: tuple[tuple[Pattern, Role], ...] = ()
     #: a system: the packages of its own instances' components, and the
     #: systems it includes (the check stage expands them into instances)
     components: tuple[str, ...] = ()
@@ -72,14 +69,12 @@ def outline_file(path: Path) -> list[PackageOutline]:
         data = load_file(Path(path)).data
         if not isinstance(data, dict) or data.get('robmosys') != 1:
             raise NoOutline()
-        defaults = data.get('defaults') or {}
-        _expect(defaults, dict)
         packages = [
-            _outline(section, model, defaults)
+            _outline(section, model)
             for section in MODEL_KINDS if data.get(section) is not None
             for model in _expect(data[section], list)
             if not (isinstance(model, dict) and model.get('external'))]
-    except (NoOutline, RobmosysError, TypeNameError):
+    except (NoOutline, RobmosysError, TypeNameError, ValueError):
         raise NoOutline() from None
     if not packages:
         # only external models: nothing of its own reports its errors
@@ -87,23 +82,26 @@ def outline_file(path: Path) -> list[PackageOutline]:
     return packages
 
 
-def _outline(section: str, model: Any, defaults: dict[str, Any]) -> PackageOutline:
+def _outline(section: str, model: Any) -> PackageOutline:
     _expect(model, dict)
     name = _expect(model.get('package'), str)
     depends = [_expect(d, str) for d in _expect(model.get('depends', []), list)]
     kind = MODEL_KINDS[section]
-    cpp = uses_actions = False
+    cpp = False
+    ports: list[tuple[Pattern, Role]] = []
     components: list[str] = []
     subsystems: list[str] = []
     if section == 'service_definitions':
         depends += [p for p in _field_packages(model, name) if p != name]
     elif section == 'components':
-        ports = _expect(model.get('ports', {}), dict)
-        patterns = [_expect(_expect(port, dict).get('pattern'), str)
-                    for port in ports.values()]
-        depends += [_package_of(_expect(port.get('type'), str)) for port in ports.values()]
+        for port in _expect(model.get('ports', {}), dict).values():
+            # an unknown pattern or role is a ValueError, a type the builder
+            # would refuse a TypeNameError: both go to the check
+            pattern = Pattern(_expect(port, dict).get('pattern'))
+            ports.append((pattern, Role(port.get('role'))))
+            depends.append(parse_interface(
+                _expect(port.get('type'), str), PATTERN_INTERFACE[pattern]).package)
         cpp = _expect(model.get('language'), str) == 'cpp'
-        uses_actions = bool(ACTION_PATTERNS.intersection(patterns))
     else:
         instances = _expect(model.get('instances', {}), dict)
         components = [
@@ -114,7 +112,7 @@ def _outline(section: str, model: Any, defaults: dict[str, Any]) -> PackageOutli
                         for body in _expect(model.get('subsystems', {}), dict).values())
             if s != name]
         depends += components + subsystems
-    return PackageOutline(name, kind, tuple(dict.fromkeys(depends)), cpp, uses_actions,
+    return PackageOutline(name, kind, tuple(dict.fromkeys(depends)), cpp, tuple(ports),
                           tuple(components), tuple(subsystems))
 
 
@@ -155,14 +153,6 @@ def _field_packages(definition: dict[str, Any], own: str) -> Iterator[str]:
                     message = parse_field_type(_expect(text, str), own).message
                     if message is not None:
                         yield message.package
-
-
-def _package_of(interface: str) -> str:
-    # as parse_interface: the package is what comes before the first slash
-    package = interface.split('/')[0]
-    if not package or '/' not in interface:
-        raise NoOutline()
-    return package
 
 
 def _expect(value: Any, kind: type) -> Any:

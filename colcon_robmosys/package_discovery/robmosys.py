@@ -14,8 +14,9 @@ from colcon_robmosys.check import load_workspace
 from colcon_robmosys.check.cache import CACHE_DIR
 from colcon_robmosys.check.cache import ModelCache
 from colcon_robmosys.errors import print_diagnostics
-from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
-from colcon_robmosys.mapping.portkinds import port_kind
+from colcon_robmosys.mapping.cpp import cpp_client_packages
+from colcon_robmosys.mapping.cpp import rclcpp_packages
+from colcon_robmosys.mapping.portkinds import PORT_KINDS
 from colcon_robmosys.model.files import model_dependencies
 from colcon_robmosys.model.outline import NoOutline
 from colcon_robmosys.model.outline import outline_file
@@ -159,9 +160,10 @@ def outline_workspace(model_files):
 def outlined_descriptors(outlines, shared):
     """Return the descriptors of the packages the outlines of the model files name."""
     return {
-        _descriptor(model_file, o.name, o.kind,
-                    _dependencies(o.kind, o.dependencies, o.cpp, o.uses_actions),
-                    shared)
+        _descriptor(model_file, o.name, o.kind, _dependencies(
+            o.kind, o.dependencies,
+            rclcpp_packages(PORT_KINDS[p] for p in o.ports) if o.cpp else ()),
+            shared)
         for model_file, packages in outlines.items() for o in packages}
 
 
@@ -183,18 +185,18 @@ def _has_cycle(graph):
     return done < len(graph)
 
 
-def _dependencies(kind, dependencies, cpp=False, uses_actions=False):
-    """Return a generated package's dependencies, those of its model's and its runtime's."""
+def _dependencies(kind, dependencies, rclcpp=()):
+    """Return a generated package's dependencies: its model's, the runtime, rclcpp.
+
+    :param rclcpp: a C++ component's rclcpp packages, built before it if the
+      workspace builds rclcpp itself; the package selection skips the
+      component where none has them
+    """
     dependencies = tuple(dependencies)
     if kind in ('component', 'system'):
         # components run on it; systems activate with it
         dependencies += (RUNTIME_PACKAGE, )
-    if kind == 'component' and cpp:
-        # built before, if the workspace builds rclcpp itself; the package
-        # selection skips the component where none has it
-        dependencies += CPP_CLIENT_PACKAGES + (
-            ('rclcpp_action', ) if uses_actions else ())
-    return dependencies
+    return dependencies + tuple(rclcpp)
 
 
 def checked_descriptors(result, model_files, shared):
@@ -208,10 +210,9 @@ def checked_descriptors(result, model_files, shared):
         descriptors.add(_descriptor(
             model.info.model_file, model.package, kind,
             _dependencies(kind, model_dependencies(model),
-                          isinstance(model, Component) and
-                          model.language is Language.CPP,
-                          isinstance(model, Component) and
-                          any(port_kind(p).uses_actions for p in model.ports)),
+                          cpp_client_packages(model)
+                          if isinstance(model, Component) and
+                          model.language is Language.CPP else ()),
             shared))
     generating = {m.info.model_file for m in
                   result.workspace.generated_models}
