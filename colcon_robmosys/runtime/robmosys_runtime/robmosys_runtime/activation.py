@@ -219,8 +219,9 @@ class SystemActivation:
             while True:
                 if self._stop.is_set():
                     raise Stopped()
-                if any(other in self._failed for other in self._after[name]):
-                    # held back: the report of the failure names it
+                if self._blockers(name):
+                    # held back, directly or through an instance held back
+                    # itself: the report of the failure names it
                     raise Stopped()
                 if all(self._states.get(other) == 'active' for other in self._after[name]):
                     return

@@ -66,8 +66,12 @@ def test_a_failure_is_reported_with_what_it_holds_back(spinning):
     after = {'b': ['a'], 'c': ['b'], 'd': []}
     activation, _, reports = _activation(spinning, ['a', 'b', 'c', 'd'], after,
                                          a={'configure': FAILURE})
+    started = time.monotonic()
     activation.start()
     outcome = activation.wait(30)
+    # c waits for b, which waits for a: both are held back at once, and the
+    # bring-up ends (bringup waits while it runs: it hung here before)
+    assert not activation.running() and time.monotonic() - started < 10
     assert outcome.failed == {'a': 'failed to configure (it is unconfigured)'}
     assert outcome.held_back == {'b': ['a'], 'c': ['a']}
     assert outcome.active == ['d']
