@@ -264,3 +264,27 @@ def test_docstrings_keep_the_model_text_and_pass_pep257(tmp_path, text):
                             text=True, timeout=300)
     # with both kinds of triple quotes only escapes are left (and D301 says so)
     assert (result.returncode == 0) != both, result.stdout + result.stderr
+
+
+def _class_constant(path: Path, name: str) -> object:
+    """Return the value of a constant assigned in the class a module is named after."""
+    cls = next(n for n in ast.parse(path.read_text()).body
+               if isinstance(n, ast.ClassDef) and n.name == path.stem)
+    return next(ast.literal_eval(n.value) for n in cls.body if isinstance(n, ast.Assign)
+                and [t.id for t in n.targets if isinstance(t, ast.Name)] == [name])
+
+
+@pytest.mark.parametrize('node_file, threads', [
+    # two activities and a query client, whose blocking call waits on one thread
+    # while the answer arrives on another; the same for an action client
+    ('add_client/add_client/AddClient.py', 4),
+    ('fibonacci_client/fibonacci_client/FibonacciClient.py', 4),
+    # one activity: rclpy's default (a thread per CPU) is what it gets
+    ('add_server/add_server/AddServer.py', 2),
+    ('subscriber/subscriber/Subscriber.py', 2),
+])
+def test_a_node_asks_for_a_thread_per_callback_group_and_one_more(
+        generated, node_file, threads):
+    # robmosys_runtime.run spins it with max(CPUs, min_threads) threads, as the
+    # C++ process does (robmosys_runtime::run's min_threads)
+    assert _class_constant(generated / node_file, 'min_threads') == threads

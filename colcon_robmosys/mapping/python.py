@@ -336,7 +336,7 @@ def spell_python(component: Component, plan: ComponentPlan,
         parameter_groups=_groups(plan.parameters, cls, spelled),
         lifecycle=tuple(PyTransition(t, methods(tuple(f), 16, len(repr(t)) + 2))
                         for t, f in plan.lifecycle if f),
-        has_impl=plan.has_impl,
+        has_impl=plan.has_impl, threads=plan.threads,
         depends=plan.depends, exec_depends=exec_depends,
         package_xml=package_xml(
             banner, component.info,

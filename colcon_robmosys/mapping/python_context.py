@@ -130,6 +130,8 @@ class PyComponent:
     parameter_groups: tuple[PyParameterGroup, ...]
     lifecycle: tuple[PyTransition, ...]
     has_impl: bool
+    #: the executor threads its process needs at least (ComponentPlan.threads)
+    threads: int
     #: packages it builds against (its interfaces), and runs with
     depends: tuple[str, ...]
     exec_depends: tuple[str, ...]

@@ -16,14 +16,24 @@ from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.node import Node
 
 
-def executor_threads() -> int:
-    """
-    Return how many threads the executor of a component has.
+#: the threads a node needs beside the others of its process, when it does not
+#: say (a node not generated from a model): threads to spare for blocking calls
+DEFAULT_MIN_THREADS = 4
 
-    Threads to spare: a blocking call of an activity waits on one while the
-    answer arrives on another.
+
+def executor_threads(nodes: Sequence[Node] = ()) -> int:
     """
-    return max(4, os.cpu_count() or 1)
+    Return how many threads the executor of a component's process has.
+
+    A generated node states its ``min_threads``: one per callback group (each
+    activity, each client) and one more, so that an activity blocked in a call
+    never starves the thread that delivers the answer, nor the lifecycle and
+    parameter services. The nodes of one process add up; a process never has
+    fewer threads than CPUs, which is what rclpy's MultiThreadedExecutor
+    takes by default (and what a hand-written node spins with).
+    """
+    needed = sum(getattr(node, 'min_threads', DEFAULT_MIN_THREADS) for node in nodes)
+    return max(os.cpu_count() or 1, needed or DEFAULT_MIN_THREADS)
 
 
 #: set once rclpy handles SIGINT (see _interrupted)
@@ -64,8 +74,9 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     """
     Spin several nodes in one process until SIGINT or SIGTERM, then shut down cleanly.
 
-    Every node has the threads a node of its own would have to spare, so a
-    blocking call of one cannot starve the others. Return the exit status (0).
+    Every node has the threads it would have in a process of its own (see
+    :func:`executor_threads`), so a blocking call of one cannot starve the
+    others. Return the exit status (0).
     """
     signal.signal(signal.SIGINT, _interrupted)
     rclpy.init(args=args)
@@ -74,9 +85,7 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     # first nodes of a 50-node process came up later, not sooner (each node
     # added woke the executor to gather every entity again, under the GIL)
     nodes = [factory() for factory in node_factories]
-    threads = executor_threads() if len(nodes) == 1 else \
-        max(executor_threads(), 2 * len(nodes))
-    executor = MultiThreadedExecutor(num_threads=threads)
+    executor = MultiThreadedExecutor(num_threads=executor_threads(nodes))
     for node in nodes:
         executor.add_node(node)
     try:

@@ -107,3 +107,21 @@ def test_sigint_interrupts_python_only_until_rclpy_handles_it(monkeypatch):
     # then rclpy's handler shuts the context down and calls this one: it is quiet
     main._rclpy_handles_sigint.set()
     assert main._interrupted(signal.SIGINT, None) is None
+
+
+def test_a_process_has_the_threads_its_nodes_need(monkeypatch):
+    import os
+    from types import SimpleNamespace
+
+    from robmosys_runtime.main import DEFAULT_MIN_THREADS, executor_threads
+    monkeypatch.setattr(os, 'cpu_count', lambda: 2)
+    # a generated node states what it needs: its callback groups and one more
+    assert executor_threads([SimpleNamespace(min_threads=3)]) == 3
+    # the nodes of a shared process add up
+    assert executor_threads([SimpleNamespace(min_threads=3)] * 5) == 15
+    # never fewer threads than CPUs, what a hand-written rclpy node spins with
+    assert executor_threads([SimpleNamespace(min_threads=1)]) == 2
+    # a node that does not say gets threads to spare
+    assert executor_threads([object()]) == DEFAULT_MIN_THREADS
+    monkeypatch.setattr(os, 'cpu_count', lambda: 16)
+    assert executor_threads([SimpleNamespace(min_threads=3)]) == 16
