@@ -15,7 +15,9 @@ import os
 from pathlib import Path
 import re
 import shutil
+import subprocess
 import sys
+from typing import Iterator
 
 import pytest
 
@@ -32,6 +34,7 @@ from colcon_robmosys.model.loader import load_file
 from colcon_robmosys.model.types import Component, InterfaceKind
 from conftest import requires_ros, TEST_WORKSPACE
 from harness.fake_ament import EXAMPLE_EXTRA, fake_ament_index
+from harness.warm_colcon import WarmColcon
 
 MODELS = Path(__file__).parent / 'models'
 INVALID = sorted((MODELS / 'invalid').glob('*.yaml'))
@@ -60,13 +63,21 @@ def corpus_prefix(tmp_path_factory) -> Path:
     return prefix
 
 
-def _colcon(args: list[str], root: Path, prefix: Path, domain_id: int) -> str:
+@pytest.fixture(scope='module')
+def warm_colcon() -> Iterator[WarmColcon]:
+    """Return colcon loaded once, forked for each of the corpus's 288 runs."""
+    colcon = WarmColcon()
+    yield colcon
+    colcon.close()
+
+
+def _colcon(colcon: WarmColcon, args: list[str], root: Path, prefix: Path,
+            domain_id: int) -> str:
     """Run colcon where the interfaces installed are those of the corpus."""
     env = ros_env.loopback_env(domain_id)
     env['AMENT_PREFIX_PATH'] = str(prefix)
-    result = ros_env.run(
-        [str(Path(sys.prefix) / 'bin' / 'colcon'), '--log-base', str(root / 'log'),
-         *args], env=env, cwd=root, timeout=300)
+    result = colcon.run(['--log-base', str(root / 'log'), *args], env=env, cwd=root,
+                        timeout=300)
     assert result.returncode != 0, result.stdout + result.stderr
     return result.stdout + result.stderr
 
@@ -91,7 +102,8 @@ def _diagnostics(output: str) -> set[str]:
 @pytest.mark.parametrize('case', INVALID, ids=[p.stem for p in INVALID])
 def test_validate_only_reports_what_build_reports(case: Path, tmp_path: Path,
                                                   corpus_prefix: Path,
-                                                  corpus_domain_id: int):
+                                                  corpus_domain_id: int,
+                                                  warm_colcon: WarmColcon):
     root = _workspace(case, tmp_path)
     # the valid models loaded with a case build fine: select the case's own
     try:
@@ -102,14 +114,37 @@ def test_validate_only_reports_what_build_reports(case: Path, tmp_path: Path,
     # after its folder, which reports its errors
     selection = ['--packages-select', *selected, 'model0']
     validate = _diagnostics(_colcon(
-        ['robmosys-generate', '--validate-only', *selection], root, corpus_prefix,
-        corpus_domain_id))
+        warm_colcon, ['robmosys-generate', '--validate-only', *selection], root,
+        corpus_prefix, corpus_domain_id))
     built = _diagnostics(_colcon(
-        ['build', '--continue-on-error', *selection], root, corpus_prefix,
-        corpus_domain_id))
+        warm_colcon, ['build', '--continue-on-error', *selection], root,
+        corpus_prefix, corpus_domain_id))
     assert validate
     assert {d for d in validate if ': error: ' in d} == \
         {d for d in built if ': error: ' in d}
+
+
+@requires_ros
+@pytest.mark.integration
+def test_warm_colcon_reports_what_the_colcon_command_reports(
+        tmp_path: Path, corpus_prefix: Path, corpus_domain_id: int, warm_colcon: WarmColcon):
+    # the corpus runs colcon forked from a process that loaded it once: the
+    # same return code and the same lines as the command
+    root = _workspace(MODELS / 'invalid' / 'port_bad_pattern.yaml', tmp_path)
+    env = ros_env.loopback_env(corpus_domain_id)
+    env['AMENT_PREFIX_PATH'] = str(corpus_prefix)
+    for args, code in ((['list'], 0), (['build', '--packages-select', 'puller'], 1)):
+        command = ros_env.run([str(Path(sys.prefix) / 'bin' / 'colcon'), *args], env=env,
+                              cwd=root, timeout=300)
+        warm = warm_colcon.run(args, env=env, cwd=root, timeout=300)
+        assert warm.returncode == command.returncode == code
+        assert _diagnostics(warm.stdout + warm.stderr) == \
+            _diagnostics(command.stdout + command.stderr) != set()
+    # a run that passes its timeout is killed, and said so
+    with pytest.raises(subprocess.TimeoutExpired):
+        warm_colcon.run(['build', '--packages-select', 'puller'], env=env, cwd=root,
+                        timeout=0.001)
+    assert warm_colcon.run(['list'], env=env, cwd=root, timeout=300).returncode == 0
 
 
 def _valid_workspaces() -> list[list[Path]]:
