@@ -71,13 +71,18 @@ def warm_colcon() -> Iterator[WarmColcon]:
     colcon.close()
 
 
+def _corpus_env(prefix: Path, domain_id: int) -> dict[str, str]:
+    """Return an environment where the interfaces installed are those of the corpus."""
+    env = ros_env.loopback_env(domain_id)
+    env['AMENT_PREFIX_PATH'] = str(prefix)
+    return env
+
+
 def _colcon(colcon: WarmColcon, args: list[str], root: Path, prefix: Path,
             domain_id: int) -> str:
     """Run colcon where the interfaces installed are those of the corpus."""
-    env = ros_env.loopback_env(domain_id)
-    env['AMENT_PREFIX_PATH'] = str(prefix)
-    result = colcon.run(['--log-base', str(root / 'log'), *args], env=env, cwd=root,
-                        timeout=300)
+    result = colcon.run(['--log-base', str(root / 'log'), *args],
+                        env=_corpus_env(prefix, domain_id), cwd=root, timeout=300)
     assert result.returncode != 0, result.stdout + result.stderr
     return result.stdout + result.stderr
 
@@ -131,8 +136,7 @@ def test_warm_colcon_reports_what_the_colcon_command_reports(
     # the corpus runs colcon forked from a process that loaded it once: the
     # same return code and the same lines as the command
     root = _workspace(MODELS / 'invalid' / 'port_bad_pattern.yaml', tmp_path)
-    env = ros_env.loopback_env(corpus_domain_id)
-    env['AMENT_PREFIX_PATH'] = str(corpus_prefix)
+    env = _corpus_env(corpus_prefix, corpus_domain_id)
     for args, code in ((['list'], 0), (['build', '--packages-select', 'puller'], 1)):
         command = ros_env.run([str(Path(sys.prefix) / 'bin' / 'colcon'), *args], env=env,
                               cwd=root, timeout=300)
@@ -222,8 +226,7 @@ def test_without_rosidl_adapter_one_error_and_no_build(tmp_path: Path, corpus_pr
         folder = root / 'src' / name
         folder.mkdir(parents=True)
         shutil.copyfile(MODELS / 'valid' / f'{name}.yaml', folder / 'robmosys.yaml')
-    env = ros_env.loopback_env(corpus_domain_id)
-    env['AMENT_PREFIX_PATH'] = str(corpus_prefix)
+    env = _corpus_env(corpus_prefix, corpus_domain_id)
     env['PYTHONPATH'] = os.pathsep.join(
         [str(hidden.parent)] + [p for p in [env.get('PYTHONPATH')] if p])
     colcon = [str(Path(sys.prefix) / 'bin' / 'colcon'), '--log-base', str(root / 'log')]

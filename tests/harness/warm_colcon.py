@@ -127,6 +127,7 @@ def _child(request: Mapping[str, Any]) -> int:
     os.environ.update(request['env'])
     null = os.open(os.devnull, os.O_RDONLY)
     os.dup2(null, 0)
+    os.close(null)
     for fd, path in ((1, request['stdout']), (2, request['stderr'])):
         handle = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
         os.dup2(handle, fd)
