@@ -6,18 +6,47 @@ The runtime of RobMoSys components in ROS 2: what generated nodes do not state.
 Hand-written nodes use it too: :class:`EventServer` and :class:`EventClient`
 serve and use event ports, :class:`QueryClient` and :class:`ActionClientPort`
 call queries and actions blocking or asynchronously (see docs/runtime.md).
+
+The names below are imported from their modules when first used: ``bringup``
+starts the processes of a system's instances before it imports rclpy (a
+third of a second, which the instances spend starting), and importing a
+module of this package must not import rclpy for it.
 """
 
-from robmosys_runtime.events import copy_fields, EventActivation, EventClient, EventServer
-from robmosys_runtime.main import executor_threads, run
-from robmosys_runtime.node import Activity, ComponentNode
-from robmosys_runtime.parameters import ParameterRule, ParameterRules
-from robmosys_runtime.ports import ActionClientPort, QueryClient, wait_for
+from importlib import import_module
+from typing import Any, List, TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from robmosys_runtime.events import (  # noqa: F401
+        copy_fields, EventActivation, EventClient, EventServer)
+    from robmosys_runtime.main import executor_threads, run  # noqa: F401
+    from robmosys_runtime.node import Activity, ComponentNode  # noqa: F401
+    from robmosys_runtime.parameters import ParameterRule, ParameterRules  # noqa: F401
+    from robmosys_runtime.ports import ActionClientPort, QueryClient, wait_for  # noqa: F401
 
 __version__ = '0.1.0'
 
-__all__ = [
-    'ActionClientPort', 'Activity', 'ComponentNode', 'EventActivation', 'EventClient',
-    'EventServer', 'ParameterRule', 'ParameterRules', 'QueryClient', 'copy_fields',
-    'executor_threads', 'run', 'wait_for',
-]
+#: each name of the package -> the module that defines it
+_MODULES = {
+    'ActionClientPort': 'ports', 'Activity': 'node', 'ComponentNode': 'node',
+    'EventActivation': 'events', 'EventClient': 'events', 'EventServer': 'events',
+    'ParameterRule': 'parameters', 'ParameterRules': 'parameters', 'QueryClient': 'ports',
+    'copy_fields': 'events', 'executor_threads': 'main', 'run': 'main', 'wait_for': 'ports',
+}
+
+__all__ = sorted(_MODULES)
+
+
+def __getattr__(name: str) -> Any:
+    """Import a name of the package from its module, the first time it is used."""
+    module = _MODULES.get(name)
+    if module is None:
+        raise AttributeError(f'module {__name__!r} has no attribute {name!r}')
+    value = getattr(import_module(f'{__name__}.{module}'), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> List[str]:
+    """List the names of the package, imported or not."""
+    return sorted(set(globals()) | set(_MODULES))
