@@ -21,6 +21,7 @@ from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.generators import (
     create_missing_user_files, generate_package, MANIFEST, plan_package,
     read_manifest, StampStore, unchanged_package)
+from colcon_robmosys.model import schema
 from conftest import TEST_WORKSPACE
 from harness.fake_ament import EXAMPLE_EXTRA, fake_ament_index
 
@@ -95,6 +96,47 @@ def test_a_cache_that_is_not_writable_writes_nothing(src, tmp_path, index):
     cache = ModelCache(tmp_path / CACHE_DIR, writable=False)
     _load(src, index, cache)
     assert not (tmp_path / CACHE_DIR).exists()
+
+
+def test_the_compiled_schema_is_kept_and_read_back(src, tmp_path, index, monkeypatch):
+    # compiling the schema took some 0.4 s in every colcon process that
+    # checked a file: a build keeps the compiled code beside the entries
+    monkeypatch.setattr(schema, '_fast', [])
+    cache = ModelCache(tmp_path / CACHE_DIR)
+    stale = tmp_path / CACHE_DIR / f'{"0" * 64}.schema-code'
+    stale.parent.mkdir()
+    stale.write_bytes(b'the schema of an older colcon-robmosys')
+    expected = _summary(_load(src, index, cache))
+    kept = sorted((tmp_path / CACHE_DIR).glob('*.schema-code'))
+    assert [p.name for p in kept] == [f'{schema.compiled_key()}.schema-code']
+
+    def compile_again():
+        raise AssertionError('compiled again, not read back')
+
+    monkeypatch.setattr(schema, '_fast', [])
+    monkeypatch.setattr(schema, 'compile_fast_check', compile_again)
+    # a new process, whose files are not in the cache (changed, say)
+    for entry in (tmp_path / CACHE_DIR).glob('*.model'):
+        entry.unlink()
+    read_back = ModelCache(tmp_path / CACHE_DIR)
+    assert _summary(_load(src, index, read_back)) == expected
+    assert read_back.misses and schema.fast_check_ready()
+    # read back, it judges as compiled: valid and broken files alike
+    model = src / 'subscriber' / 'robmosys.yaml'
+    model.write_text(model.read_text().replace('trigger: rMap', 'trigger: [rMap]'))
+    assert _summary(_load(src, index, read_back)) == _summary(_load(src, index, None))
+    assert _load(src, index, None).errors_of(str(model))
+
+
+def test_a_corrupt_compiled_schema_is_compiled_again(src, tmp_path, index, monkeypatch):
+    monkeypatch.setattr(schema, '_fast', [])
+    entry = tmp_path / CACHE_DIR / f'{schema.compiled_key()}.schema-code'
+    entry.parent.mkdir()
+    entry.write_bytes(b'\xe3 not marshal')
+    assert _summary(_load(src, index, ModelCache(tmp_path / CACHE_DIR))) == \
+        _summary(_load(src, index, None))
+    assert schema.fast_check_ready()
+    assert entry.read_bytes() != b'\xe3 not marshal'
 
 
 def _generate_all(src: Path, out: Path, index: InterfaceIndex) -> dict[str, int]:

@@ -193,6 +193,8 @@ def load_workspace(paths: Iterable[Path],
         key = keys[str(path)] = file_key(path, raw)
         checked = cache.get(key) if cache is not None else None
         if checked is None:
+            if cache is not None:
+                cache.use_compiled_schema()
             checked = check_file(path, raw)
             if cache is not None:
                 cache.put(key, checked)

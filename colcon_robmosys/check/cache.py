@@ -8,14 +8,17 @@ path (every location names it) and the code of colcon-robmosys: an entry is
 found by a digest of the three, so that a changed file, a moved one or
 another colcon-robmosys (even one of the same version number, as during its
 development) finds no entry and checks the file anew. An entry that cannot
-be read back, for whatever reason, counts as none.
+be read back, for whatever reason, counts as none. Beside the entries, the
+schema compiled to bytecode, for the files that are not in the cache.
 """
 
 from __future__ import annotations
 
+from contextlib import suppress
 from dataclasses import dataclass
 from functools import lru_cache
 import hashlib
+import marshal
 import os
 from pathlib import Path
 import pickle
@@ -24,7 +27,7 @@ import tempfile
 
 import colcon_robmosys
 from colcon_robmosys.errors import Diagnostic
-from colcon_robmosys.model import rosidl
+from colcon_robmosys.model import rosidl, schema
 from colcon_robmosys.model.types import ModelFile
 
 #: The folder of the cache, in the build base (``build/`` of colcon).
@@ -32,6 +35,9 @@ CACHE_DIR = '.robmosys-cache'
 
 #: What each entry ends with, so that nothing else in the folder is read.
 _SUFFIX = '.model'
+
+#: What the entry of the compiled schema ends with (one: see use_compiled_schema).
+_SCHEMA_SUFFIX = '.schema-code'
 
 #: The parts of colcon-robmosys whose code or data a check depends on.
 _CODE_SUFFIXES = ('.py', '.json', '.jinja')
@@ -88,9 +94,40 @@ class ModelCache:
         self.writable = writable
         self.hits = 0
         self.misses = 0
+        self._schema_given = False
 
     def _entry(self, key: str) -> Path:
         return self.folder / f'{key}{_SUFFIX}'
+
+    def use_compiled_schema(self) -> None:
+        """Give the schema check the compiled schema kept here; compile and keep it if none.
+
+        Compiling it takes some 0.4 s, which every colcon process that checks
+        a model file paid; read back, it takes a millisecond. Called before
+        the first file that is not in the cache is checked. The entry of
+        another schema, fastjsonschema or Python is replaced.
+        """
+        if self._schema_given or schema.fast_check_ready():
+            return
+        self._schema_given = True
+        key = schema.compiled_key()
+        if key is None:
+            return
+        entry = self.folder / f'{key}{_SCHEMA_SUFFIX}'
+        try:
+            schema.use_fast_check(marshal.loads(entry.read_bytes()))
+            return
+        except Exception:  # noqa: B902 - missing, truncated, from other code
+            pass
+        code = schema.compile_fast_check()
+        if code is None:
+            return
+        schema.use_fast_check(code)
+        if self._store(entry, marshal.dumps(code)):
+            for other in self.folder.glob(f'*{_SCHEMA_SUFFIX}'):
+                if other != entry:
+                    with suppress(OSError):
+                        other.unlink()
 
     def get(self, key: str) -> CheckedFile | None:
         """Return the entry of a key, None if there is none that reads back."""
@@ -108,22 +145,28 @@ class ModelCache:
 
     def put(self, key: str, entry: CheckedFile) -> None:
         """Store an entry; a folder that cannot be written only slows the next run."""
+        self._store(self._entry(key),
+                    pickle.dumps(entry, protocol=pickle.HIGHEST_PROTOCOL))
+
+    def _store(self, path: Path, data: bytes) -> bool:
+        """Write a file of the cache atomically, if writable; return whether it was written."""
         if not self.writable:
-            return
+            return False
         try:
             self.folder.mkdir(parents=True, exist_ok=True)
             fd, temp = tempfile.mkstemp(dir=self.folder, prefix='.', suffix='.tmp')
             try:
                 with os.fdopen(fd, 'wb') as stream:
-                    pickle.dump(entry, stream, protocol=pickle.HIGHEST_PROTOCOL)
+                    stream.write(data)
                 # atomic: a reader sees a whole entry or none (no fsync: an
                 # entry lost in a power cut is only checked again)
-                os.replace(temp, self._entry(key))
+                os.replace(temp, path)
             except BaseException:  # noqa: B902 - leave no temporary file
                 os.unlink(temp)
                 raise
         except OSError:
-            pass
+            return False
+        return True
 
     def prune(self, used: set[str]) -> None:
         """Remove the entries of files that no longer are, once they are many."""

@@ -6,10 +6,13 @@
 from __future__ import annotations
 
 from functools import lru_cache
+import hashlib
 from importlib import resources
+import importlib.util
 import json
 from pathlib import Path
 import re
+from types import CodeType
 from typing import Any, Callable, Iterator
 
 from jsonschema import Draft202012Validator
@@ -61,14 +64,31 @@ def _validator() -> Any:
     return _Validator(schema())
 
 
-@lru_cache(maxsize=1)
-def _fast_check() -> Callable[[Any], Any] | None:
-    """Return the schema compiled to Python code, None without fastjsonschema.
+#: the compiled schema of this process, once there is one (see _fast_check)
+_fast: list[Callable[[Any], Any]] = []
 
-    It says only whether a model is valid, and why at its first problem;
-    jsonschema says what every problem is, as the messages below translate
-    them, but takes some fifteen times as long: it reports the problems of
-    the models fastjsonschema finds invalid.
+
+def compiled_key() -> str | None:
+    """Return what the compiled schema depends on, as a digest; None without fastjsonschema.
+
+    The schema, fastjsonschema's version and the bytecode of this Python:
+    a compiled schema kept under its key (check.cache) serves every process
+    of the same three.
+    """
+    try:
+        import fastjsonschema
+    except ImportError:
+        return None
+    digest = hashlib.sha256(schema_path().read_bytes())
+    digest.update(f'\0{fastjsonschema.VERSION}\0'.encode() + importlib.util.MAGIC_NUMBER)
+    return digest.hexdigest()
+
+
+def compile_fast_check() -> CodeType | None:
+    """Compile the schema to Python bytecode; None without fastjsonschema.
+
+    Some 0.4 s: fastjsonschema writes 800 KB of Python, which Python then
+    compiles. Running the code (:func:`use_fast_check`) takes a millisecond.
     """
     try:
         import fastjsonschema
@@ -76,9 +96,45 @@ def _fast_check() -> Callable[[Any], Any] | None:
         return None
     # fastjsonschema knows drafts 4 to 7: the schema uses nothing of 2020-12
     # that draft 7 lacks ($defs is found through the $ref pointers)
-    definition = dict(schema(), **{
-        '$schema': 'http://json-schema.org/draft-07/schema#'})
-    return fastjsonschema.compile(definition)
+    source = fastjsonschema.compile_to_code(dict(schema(), **{
+        '$schema': 'http://json-schema.org/draft-07/schema#'}))
+    # the function of the whole schema is the first the code defines
+    root = re.search(r'^def (\w+)\(', source, re.MULTILINE)
+    assert root is not None, 'fastjsonschema wrote no function'
+    return compile(f'{source}\n{_ROOT} = {root.group(1)}\n', '<robmosys schema>', 'exec')
+
+
+#: the name the code of compile_fast_check gives the check of the whole schema
+_ROOT = 'robmosys_check'
+
+
+def use_fast_check(code: CodeType) -> None:
+    """Check models with a compiled schema from :func:`compile_fast_check`, in this process."""
+    namespace: dict[str, Any] = {}
+    exec(code, namespace)  # noqa: S102 - our own schema, compiled by fastjsonschema
+    _fast[:] = [namespace[_ROOT]]
+
+
+def _fast_check() -> Callable[[Any], Any] | None:
+    """Return the schema compiled to Python code, None without fastjsonschema.
+
+    It says only whether a model is valid, and why at its first problem;
+    jsonschema says what every problem is, as the messages below translate
+    them, but takes some fifteen times as long: it reports the problems of
+    the models fastjsonschema finds invalid. Compiled once per process, or
+    read from where a build kept it (check.cache).
+    """
+    if not _fast:
+        code = compile_fast_check()
+        if code is None:
+            return None
+        use_fast_check(code)
+    return _fast[0]
+
+
+def fast_check_ready() -> bool:
+    """Say whether this process has its compiled schema already."""
+    return bool(_fast)
 
 
 def is_valid(data: Any) -> bool:
