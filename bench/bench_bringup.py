@@ -16,6 +16,10 @@ robmosys_runtime) then brings up, in alternation and in the same run:
 Each time is from the start of ``bringup`` to its report that every managed
 instance is active. Prints each time / the slowest single instance's, the
 ratio issue 16 and issue 14 set the goal for (within 1.5x at 20 and at 50).
+In the same rounds, the floor of each size (``bringup_floor.py``): the same
+nodes made and activated in one process by rclpy's own transitions, with no
+manager, no service and no discovery, from the start of that process; each
+bring-up is also printed against it, which is what the manager adds.
 Then ``--hang-runs`` bring-ups in a row of the system of ``--hang-size`` instances,
 each with a timeout: how many came up, failed, or hung.
 
@@ -42,6 +46,10 @@ from benchlib import best, print_end, print_machine, ratio, spread, table
 from colcon_robmosys.devtools import ros_env
 
 SYSTEM = 'bench_bringup_system'
+#: makes and activates a system's nodes in one process, with no manager
+FLOOR = Path(__file__).resolve().parent / 'bringup_floor.py'
+#: the "processes" of the floor's cases
+FLOOR_LAYOUT = 'one, no manager (floor)'
 METADATA = {'license': 'Apache-2.0',
             'maintainers': [{'name': 'Benchmark Team', 'email': 'bench@example.com'}]}
 BEAT = {
@@ -135,6 +143,43 @@ def bring_up(install: Path, description: Path, layout: str, count: int,
     return outcome, took
 
 
+def floor(install: Path, description: Path, count: int, timeout: float) -> tuple[str, float]:
+    """
+    Make and activate a system's nodes with no manager; return the outcome and the seconds.
+
+    The time is from the start of the process to its report, as for bring_up.
+    """
+    env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
+    params = install / SYSTEM / 'share' / SYSTEM / json.loads(description.read_text())[
+        'params_file']
+    done = f'floor: {count} of {count} active'
+    with tempfile.TemporaryFile() as log:
+        start = time.monotonic()
+        process = subprocess.Popen([sys.executable, str(FLOOR), str(description), str(params)],
+                                   env=env, stdout=log, stderr=subprocess.STDOUT,
+                                   stdin=subprocess.DEVNULL)
+        outcome, took = 'hung', timeout
+        try:
+            while time.monotonic() - start < timeout:
+                output = os.pread(log.fileno(), os.fstat(log.fileno()).st_size, 0).decode(
+                    errors='replace')
+                if done in output:
+                    outcome, took = 'up', time.monotonic() - start
+                    break
+                if process.poll() is not None:
+                    outcome, took = 'failed', time.monotonic() - start
+                    sys.stderr.write(output)
+                    break
+                time.sleep(0.02)
+        finally:
+            try:
+                process.wait(BRING_DOWN_BOUND if outcome == 'up' else 0)
+            except subprocess.TimeoutExpired:
+                process.kill()
+                process.wait()
+    return outcome, took
+
+
 #: seconds bringup may take to bring a system down and end: two transitions of
 #: --timeout 30 each, the processes' 10 s to end, and a margin
 BRING_DOWN_BOUND = 2 * 30 + 10 + 20
@@ -188,12 +233,16 @@ def main(argv: Sequence[str] | None = None) -> int:
             path = subset(install, names[:size], root / f'system_{size}.json')
             for layout in args.layouts:
                 cases[(f'{size} instances', layout)] = (path, size)
+            cases[(f'{size} instances', FLOOR_LAYOUT)] = (path, size)
         times: dict[tuple[str, str], list[float]] = {case: [] for case in cases}
         for round_ in range(args.rounds):
             order = list(cases)[::1 if round_ % 2 == 0 else -1]
             for case in order:
                 path, count = cases[case]
-                outcome, took = bring_up(install, path, case[1], count, args.timeout)
+                if case[1] == FLOOR_LAYOUT:
+                    outcome, took = floor(install, path, count, args.timeout)
+                else:
+                    outcome, took = bring_up(install, path, case[1], count, args.timeout)
                 print(f'  round {round_ + 1}, {case[0]}, {case[1]}: {outcome} in {took:.2f} s',
                       flush=True)
                 if outcome == 'up':
@@ -207,6 +256,13 @@ def main(argv: Sequence[str] | None = None) -> int:
         print('time to all-active / the slowest single instance')
         print(table(('system', 'processes', 'runs up', 'fastest s', 'ratio to slowest single'),
                     rows))
+        print('time to all-active / the floor (the same nodes up in one process, no manager)')
+        print(table(('system', 'processes', 'ratio to the floor'), [
+            (name, layout, ratio(best(times[(name, layout)]),
+                                 best(times[(name, FLOOR_LAYOUT)])))
+            for name, layout in cases
+            if layout != FLOOR_LAYOUT and times[(name, layout)]
+            and times.get((name, FLOOR_LAYOUT))]))
         print('spread (s):')
         for case, samples in times.items():
             if samples:

@@ -104,13 +104,13 @@ def test_runtime_benchmark_prints_ratios(capsys):
 
 @requires_ros
 def test_bringup_benchmark_prints_ratios_and_counts_hangs(capsys):
-    """Every system of the bring-up benchmark comes up, in both layouts."""
+    """Every system of the bring-up benchmark comes up, in both layouts, and its floor."""
     assert bench_bringup.main(['--sizes', '4', '--rounds', '1', '--hang-runs', '2',
                                '--hang-size', '2', '--timeout', '90']) == 0
     out = capsys.readouterr().out
-    assert len(re.findall(r'round 1, .*: up in', out)) == 4, out
-    assert len(re.findall(rf'^\| 4 instances +\| (per-instance|shared) .* {RATIO} +\|', out,
-                          re.MULTILINE)) == 2, out
+    assert len(re.findall(r'round 1, .*: up in', out)) == 5, out
+    assert len(re.findall(rf'^\| 4 instances +\| (per-instance|shared|one, no manager '
+                          rf'\(floor\)) .* {RATIO} +\|', out, re.MULTILINE)) == 3 + 2, out
     assert '2 bring-ups in a row of 2 instances (per-instance): 2 up, 0 failed, 0 hung' in out
     assert ', 0 stuck at bring-down' in out
 
