@@ -73,7 +73,7 @@ class ComponentNode(LifecycleNode):
         self.activities: Dict[str, Activity] = {name: Activity(name) for name in activities}
         self._lifecycle = {key: tuple(functions) for key, functions in (lifecycle or {}).items()}
         self._ports: List[Tuple[str, Callable[[], object]]] = []
-        self._timers: List[Timer] = []
+        self._activity_timers: List[Timer] = []
         for name in ports:
             setattr(self, name, None)
 
@@ -208,7 +208,7 @@ class ComponentNode(LifecycleNode):
         timer = self.create_timer(
             period, self.run_activity_callback(activity, functions),
             callback_group=self.activities[activity].callback_group, autostart=False)
-        self._timers.append(timer)
+        self._activity_timers.append(timer)
         return timer
 
     # activities
@@ -275,14 +275,14 @@ class ComponentNode(LifecycleNode):
             return TransitionCallbackReturn.FAILURE
         result = super().on_activate(state)
         self._active = True
-        for timer in self._timers:
+        for timer in self._activity_timers:
             timer.reset()
         return result
 
     def on_deactivate(self, state: LifecycleState) -> TransitionCallbackReturn:
         """Stop the activities and publishing, then run the deactivate functions."""
         self._active = False
-        for timer in self._timers:
+        for timer in self._activity_timers:
             timer.cancel()
         self._wait_for_activities()
         result = super().on_deactivate(state)
@@ -307,7 +307,7 @@ class ComponentNode(LifecycleNode):
 
     def release(self) -> None:
         """Destroy the ports and timers created on configure."""
-        timers, self._timers = self._timers, []
+        timers, self._activity_timers = self._activity_timers, []
         for timer in timers:
             self.destroy_timer(timer)
         ports, self._ports = self._ports, []

@@ -86,6 +86,22 @@ def test_ports_live_from_configure_to_cleanup(spinning):
     assert node.pCount is not None
 
 
+def test_the_node_keeps_rclpy_s_list_of_its_timers(spinning):
+    # ComponentNode kept its activities' timers in rclpy's own Node._timers:
+    # each was then in the node's timers twice (twice in every wait set), and
+    # cleanup dropped the node's other timers from the executor's sight
+    node = spinning.add(Counter(spinning.context))
+    beats = []
+    own = node.create_timer(0.05, lambda: beats.append(1))
+    _lifecycle(node, 'configure')
+    timers = list(node.timers)
+    assert len(timers) == len(set(timers)) == 2 and own in timers
+    _lifecycle(node, 'cleanup')
+    assert list(node.timers) == [own]
+    beats.clear()
+    assert wait_until(lambda: len(beats) >= 2)
+
+
 def test_queries_are_answered_while_active_only(spinning):
     node = spinning.add(Counter(spinning.context))
     client_node = spinning.add(Node('asker', context=spinning.context))
