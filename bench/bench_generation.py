@@ -15,6 +15,11 @@ those packages on this disk costs at the least, however they were made. Wall-clo
 time is what a user waits; the CPU time of this process leaves out waiting for the
 disk (every file written is synced) and for the other processes of a busy machine.
 
+Last, what each colcon process that checks a changed model file pays once for the
+schema, each in a fresh interpreter, alternated: compiling it with fastjsonschema,
+against reading the compiled schema back from the build tree's cache
+(``build/.robmosys-cache``), where a build keeps it.
+
     make bench-generation                  # or: .venv/bin/python bench/bench_generation.py
     .venv/bin/python bench/bench_generation.py --profile 1000   # where the time goes
     .venv/bin/python bench/bench_generation.py --tmpdir /dev/shm  # without the disk
@@ -28,6 +33,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 import pstats
 import resource
+import subprocess
+import sys
 import tempfile
 import time
 from typing import Sequence
@@ -291,6 +298,44 @@ def profile(components: int, limit: int = 30) -> None:
     stats.sort_stats('tottime').print_stats(limit)
 
 
+#: what a fresh interpreter runs to time the schema: compiled, or read back from a cache
+_SCHEMA_CODE = {
+    'compiled': 'from colcon_robmosys.model import schema\n'
+                'start = time.perf_counter()\n'
+                'schema.use_fast_check(schema.compile_fast_check())\n',
+    'read back': 'from colcon_robmosys.check import ModelCache\n'
+                 'cache = ModelCache(pathlib.Path(sys.argv[1]))\n'
+                 'start = time.perf_counter()\n'
+                 'cache.use_compiled_schema()\n',
+}
+
+
+def schema_cost(rounds: int) -> str:
+    """Time making the compiled schema in fresh interpreters; return the lines to print."""
+    times: dict[str, list[float]] = {way: [] for way in _SCHEMA_CODE}
+
+    def timed(way: str, folder: str) -> float:
+        code = 'import pathlib, sys, time\n' + _SCHEMA_CODE[way] + \
+            'print(time.perf_counter() - start)\n'
+        done = subprocess.run([sys.executable, '-c', code, folder], check=True,
+                              capture_output=True, text=True, timeout=120)
+        return float(done.stdout)
+
+    with tempfile.TemporaryDirectory(prefix='robmosys-bench-schema-') as folder:
+        timed('read back', folder)  # finds none: compiles and keeps it, as a build does
+        for round_ in range(rounds):
+            for way in list(_SCHEMA_CODE)[::1 if round_ % 2 == 0 else -1]:
+                times[way].append(timed(way, folder))
+    compiled, read_back = min(times['compiled']), min(times['read back'])
+    return '\n'.join([
+        f'the schema, once per colcon process that checks a changed model file '
+        f'(fastest of {rounds}, a fresh interpreter each):',
+        f'  compiled: {compiled * 1e3:.1f} ms; read back from the build tree: '
+        f'{read_back * 1e3:.1f} ms ({ratio(read_back, compiled)} of compiling it)',
+        f'  compiled: {spread(times["compiled"])}',
+        f'  read back: {spread(times["read back"])}'])
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the benchmark and print its figures."""
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
@@ -303,6 +348,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument('--cpp-every', type=int, default=CPP_EVERY,
                         help='make every Nth component a C++ one, 0 for none '
                         f'(default: {CPP_EVERY})')
+    parser.add_argument('--schema-rounds', type=int, default=5,
+                        help='fresh interpreters timing the schema each way (default: 5)')
     parser.add_argument('--tmpdir', type=Path,
                         help='where to write the workspaces (default: the system temp folder)')
     args = parser.parse_args(argv)
@@ -316,6 +363,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                   f'N0={min(args.sizes)}, written below {tempfile.gettempdir()}')
     results = run(sorted(args.sizes), args.repeat)
     print(report(results))
+    print(schema_cost(args.schema_rounds))
     print_end()
     return 0
 
