@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from pathlib import Path
 import shutil
+import sys
 
 import pytest
 
@@ -137,6 +138,16 @@ def test_a_corrupt_compiled_schema_is_compiled_again(src, tmp_path, index, monke
         _summary(_load(src, index, None))
     assert schema.fast_check_ready()
     assert entry.read_bytes() != b'\xe3 not marshal'
+
+
+def test_without_fastjsonschema_jsonschema_judges_and_nothing_is_kept(
+        src, tmp_path, index, monkeypatch):
+    expected = _summary(_load(src, index, None))
+    monkeypatch.setattr(schema, '_fast', [])
+    monkeypatch.setitem(sys.modules, 'fastjsonschema', None)  # import fails
+    assert _summary(_load(src, index, ModelCache(tmp_path / CACHE_DIR))) == expected
+    assert schema.fast_check_ready() and schema._fast_check() is None
+    assert not list((tmp_path / CACHE_DIR).glob('*.schema-code'))
 
 
 def _generate_all(src: Path, out: Path, index: InterfaceIndex) -> dict[str, int]:

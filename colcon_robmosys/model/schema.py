@@ -64,8 +64,9 @@ def _validator() -> Any:
     return _Validator(schema())
 
 
-#: the compiled schema of this process, once there is one (see _fast_check)
-_fast: list[Callable[[Any], Any]] = []
+#: the compiled schema of this process once made, None in it without
+#: fastjsonschema (see _fast_check)
+_fast: list[Callable[[Any], Any] | None] = []
 
 
 def compiled_key() -> str | None:
@@ -127,13 +128,14 @@ def _fast_check() -> Callable[[Any], Any] | None:
     if not _fast:
         code = compile_fast_check()
         if code is None:
-            return None
-        use_fast_check(code)
+            _fast[:] = [None]
+        else:
+            use_fast_check(code)
     return _fast[0]
 
 
 def fast_check_ready() -> bool:
-    """Say whether this process has its compiled schema already."""
+    """Say whether this process has its compiled schema already (or knows it has none)."""
     return bool(_fast)
 
 
