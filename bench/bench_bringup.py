@@ -37,7 +37,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from typing import Sequence
+from typing import IO, Sequence
 
 import yaml
 
@@ -118,16 +118,8 @@ def bring_up(install: Path, description: Path, layout: str, count: int,
             start_new_session=True)
         outcome, took = 'hung', timeout
         try:
-            while time.monotonic() - start < timeout:
-                output = os.pread(log.fileno(), os.fstat(log.fileno()).st_size, 0).decode(
-                    errors='replace')
-                if done in output:
-                    outcome, took = 'up', time.monotonic() - start
-                    break
-                if 'managed instances active' in output or process.poll() is not None:
-                    outcome, took = 'failed', time.monotonic() - start
-                    break
-                time.sleep(0.02)
+            outcome, took, _ = _watch(log, process, start, timeout, done,
+                                      'managed instances active')
         finally:
             if process.poll() is None:
                 os.killpg(process.pid, signal.SIGINT)
@@ -160,17 +152,9 @@ def floor(install: Path, description: Path, count: int, timeout: float) -> tuple
                                    stdin=subprocess.DEVNULL)
         outcome, took = 'hung', timeout
         try:
-            while time.monotonic() - start < timeout:
-                output = os.pread(log.fileno(), os.fstat(log.fileno()).st_size, 0).decode(
-                    errors='replace')
-                if done in output:
-                    outcome, took = 'up', time.monotonic() - start
-                    break
-                if process.poll() is not None:
-                    outcome, took = 'failed', time.monotonic() - start
-                    sys.stderr.write(output)
-                    break
-                time.sleep(0.02)
+            outcome, took, output = _watch(log, process, start, timeout, done)
+            if outcome == 'failed':
+                sys.stderr.write(output)
         finally:
             try:
                 process.wait(BRING_DOWN_BOUND if outcome == 'up' else 0)
@@ -178,6 +162,26 @@ def floor(install: Path, description: Path, count: int, timeout: float) -> tuple
                 process.kill()
                 process.wait()
     return outcome, took
+
+
+def _watch(log: IO[bytes], process: subprocess.Popen[bytes], start: float, timeout: float,
+           done: str, failed: str | None = None) -> tuple[str, float, str]:
+    """
+    Read a process's output until it says done; return the outcome, the seconds and the output.
+
+    ``failed`` (or the process ending first) makes the outcome ``failed``; no
+    word within timeout seconds of start, ``hung``.
+    """
+    output = ''
+    while time.monotonic() - start < timeout:
+        output = os.pread(log.fileno(), os.fstat(log.fileno()).st_size, 0).decode(
+            errors='replace')
+        if done in output:
+            return 'up', time.monotonic() - start, output
+        if (failed is not None and failed in output) or process.poll() is not None:
+            return 'failed', time.monotonic() - start, output
+        time.sleep(0.02)
+    return 'hung', timeout, output
 
 
 #: seconds bringup may take to bring a system down and end: two transitions of
