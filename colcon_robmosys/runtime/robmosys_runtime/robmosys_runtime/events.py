@@ -20,6 +20,8 @@ from typing import Any, Callable, Dict, List, Optional
 from action_msgs.msg import GoalStatus
 from rclpy.action import CancelResponse, GoalResponse
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
+from rclpy.exceptions import InvalidHandle
+from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
 from rclpy.node import Node
 from rclpy.qos import QoSProfile
 from rclpy.task import Future
@@ -197,6 +199,7 @@ class EventClient:
         self._on_event = on_event
         self._lock = threading.Lock()
         self._activations: List[EventActivation] = []
+        self._destroyed = False
         self.callback_group = MutuallyExclusiveCallbackGroup()
         self.client: Any = ActionClient(
             node, action_type, name, callback_group=self.callback_group,
@@ -231,7 +234,22 @@ class EventClient:
             goal_handle = handle.goal_handle if not handle.ended else None
             handle.ended = True
         if goal_handle is not None:
+            self._cancel(goal_handle)
+
+    def _cancel(self, goal_handle: Any) -> None:
+        """
+        Ask the server to end an activation, unless the port is released already.
+
+        An activation accepted while the port was released (a cleanup, in
+        another thread) is ended too late to be cancelled: the client is
+        gone, and its server ends the goal when it sees it go. rclpy then
+        raises, which ended the process (and every instance it held).
+        """
+        try:
             goal_handle.cancel_goal_async()
+        except (InvalidHandle, _rclpy.RCLError):
+            if not self._destroyed:
+                raise
 
     def _accepted(self, handle: EventActivation, future: Future) -> None:
         goal_handle = future.result()
@@ -243,7 +261,7 @@ class EventClient:
             handle.goal_handle = goal_handle
             ended = handle.ended
         if ended:
-            goal_handle.cancel_goal_async()
+            self._cancel(goal_handle)
             return
         goal_handle.get_result_async().add_done_callback(
             lambda future: self._finished(handle, future))
@@ -276,4 +294,5 @@ class EventClient:
             activations = list(self._activations)
         for handle in activations:
             self.deactivate(handle)
+        self._destroyed = True
         self.client.destroy()

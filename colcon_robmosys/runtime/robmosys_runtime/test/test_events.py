@@ -2,9 +2,12 @@
 # Licensed under the Apache License, Version 2.0
 """EventServer and EventClient over a real ROS 2 action (test_msgs/Fibonacci as the event)."""
 
+import time
+
 from conftest import wait_until
 import pytest
 from rclpy.node import Node
+from rclpy.task import Future
 from robmosys_runtime import EventClient, EventServer
 from test_msgs.action import Fibonacci
 
@@ -63,6 +66,25 @@ def test_single_needs_a_single_field(spinning):
     server, client, events = _pair(spinning)
     with pytest.raises(ValueError, match='no single field'):
         client.activate(Fibonacci.Goal(order=1), single=True)
+
+
+def test_an_activation_accepted_while_the_port_is_released_ends_quietly(spinning):
+    # the answer to an activation can come while a cleanup releases the port,
+    # in another thread: the port, deactivated, then cancels it on a client
+    # that is gone (rclpy raised, which ended the process); made deterministic
+    server, client, events = _pair(spinning)
+    handle = client.activate(Fibonacci.Goal(order=1))
+    assert wait_until(lambda: handle.goal_handle is not None)
+    answered = Future()
+    answered.set_result(handle.goal_handle)
+    client.destroy()
+    assert handle.ended
+    # the executor lets go of the client's handle at its next wake: rclpy then
+    # destroys it, as it did under the late answer
+    spinning.executor.wake()
+    time.sleep(0.5)
+    client._accepted(handle, answered)  # the answer's callback, after the release
+    server.destroy()
 
 
 def test_destroying_the_server_ends_the_activations(spinning):
