@@ -20,12 +20,10 @@ from typing import Any, Callable, Dict, List, Optional
 from action_msgs.msg import GoalStatus
 from rclpy.action import CancelResponse, GoalResponse
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
-from rclpy.exceptions import InvalidHandle
-from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
 from rclpy.node import Node
 from rclpy.qos import QoSProfile
 from rclpy.task import Future
-from robmosys_runtime.ports import ActionClient, ActionServer
+from robmosys_runtime.ports import _unless_destroyed, ActionClient, ActionServer
 
 #: What a provided event port tests each event against: (activation, event) -> holds.
 Condition = Callable[[Any, Any], bool]
@@ -199,7 +197,6 @@ class EventClient:
         self._on_event = on_event
         self._lock = threading.Lock()
         self._activations: List[EventActivation] = []
-        self._destroyed = False
         self.callback_group = MutuallyExclusiveCallbackGroup()
         self.client: Any = ActionClient(
             node, action_type, name, callback_group=self.callback_group,
@@ -243,13 +240,9 @@ class EventClient:
         An activation accepted while the port was released (a cleanup, in
         another thread) is ended too late to be cancelled: the client is
         gone, and its server ends the goal when it sees it go. rclpy then
-        raises, which ended the process (and every instance it held).
+        raised, which ended the process (and every instance it held).
         """
-        try:
-            goal_handle.cancel_goal_async()
-        except (InvalidHandle, _rclpy.RCLError):
-            if not self._destroyed:
-                raise
+        _unless_destroyed(self.client._client_handle, goal_handle.cancel_goal_async, None)
 
     def _accepted(self, handle: EventActivation, future: Future) -> None:
         goal_handle = future.result()
@@ -294,5 +287,4 @@ class EventClient:
             activations = list(self._activations)
         for handle in activations:
             self.deactivate(handle)
-        self._destroyed = True
         self.client.destroy()
