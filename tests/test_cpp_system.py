@@ -22,11 +22,11 @@ import sys
 import pytest
 
 from colcon_robmosys.devtools import ros_env
-from colcon_robmosys.devtools.system import (
-    activate_launch_file, LifecycleDriver, nodes_launch_file, read_launch_file, wait_until)
+from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
 from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
 from colcon_robmosys.package_selection.robmosys import missing_prefix_packages
 from conftest import requires_ros
+from harness.launch_files import activate_launch_file, nodes_launch_file, read_launch_file
 
 pytestmark = [pytest.mark.integration, requires_ros]
 

@@ -24,10 +24,10 @@ from test_cpp_system import requires_rclcpp
 from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.devtools.ros_env import background
-from colcon_robmosys.devtools.system import (
-    activation_waves, LifecycleDriver, nodes_launch_file, read_launch_file, wait_until)
+from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
 from colcon_robmosys.model.types import Component, Instance, Language, System
 from conftest import requires_ros, TEST_WORKSPACE
+from harness.launch_files import activation_waves, nodes_launch_file, read_launch_file
 
 pytestmark = [pytest.mark.integration, requires_ros]
 

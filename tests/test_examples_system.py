@@ -20,9 +20,9 @@ from typing import Iterator
 import pytest
 
 from colcon_robmosys.devtools.ros_env import Background, background, free_domain_id
-from colcon_robmosys.devtools.system import (
-    LifecycleDriver, NodeLaunch, nodes_launch_file, read_launch_file, wait_until)
+from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
 from conftest import BuiltWorkspace, requires_ros
+from harness.launch_files import NodeLaunch, nodes_launch_file, read_launch_file
 
 pytestmark = [pytest.mark.integration, requires_ros]
 

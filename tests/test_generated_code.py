@@ -16,10 +16,10 @@ import yaml
 
 from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
-from colcon_robmosys.devtools.system import read_launch_file
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
 from conftest import TEST_WORKSPACE
+from harness.launch_files import read_launch_file
 
 
 def generate_workspace(src: Path, out: Path) -> dict[str, object]:

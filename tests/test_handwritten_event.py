@@ -14,9 +14,9 @@ import re
 
 import pytest
 
+from colcon_robmosys.devtools.ros_env import background
+from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
 from conftest import requires_ros
-from harness.ros_env import background
-from harness.system import LifecycleDriver, wait_until
 
 pytestmark = [pytest.mark.integration, requires_ros]
 

@@ -10,9 +10,9 @@ import re
 import pytest
 
 from colcon_robmosys.devtools.ros_env import background
-from colcon_robmosys.devtools.system import (
-    LifecycleDriver, nodes_launch_file, read_launch_file, wait_until)
+from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
 from conftest import requires_ros
+from harness.launch_files import nodes_launch_file, read_launch_file
 
 pytestmark = [pytest.mark.integration, requires_ros]
 

@@ -21,9 +21,10 @@ import pytest
 from colcon_robmosys.check import load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.devtools.ros_env import background, loopback_env, run
-from colcon_robmosys.devtools.system import NodeLaunch, wait_until
+from colcon_robmosys.devtools.system import wait_until
 from colcon_robmosys.generators import plan_package
 from conftest import requires_ros
+from harness.launch_files import NodeLaunch
 
 pytestmark = [pytest.mark.integration, requires_ros]
 

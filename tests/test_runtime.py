@@ -18,9 +18,9 @@ from xml.etree import ElementTree
 
 import pytest
 
+from colcon_robmosys.devtools import ros_env
 from colcon_robmosys.runtime import installed_runtime, RUNTIME_PACKAGE, runtime_source
 from conftest import build_workspace, BuiltWorkspace, requires_ros
-from harness import ros_env
 
 MODEL = """\
 robmosys: 1

@@ -22,13 +22,13 @@ import yaml
 from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.devtools.ros_env import background
-from colcon_robmosys.devtools.system import (
-    LifecycleDriver, nodes_launch_file, read_launch_file, wait_until)
+from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
 from colcon_robmosys.generators.starter import (
     class_name, Maintainer, name_problems, render_starter, starter_component,
     starter_system, StarterDefinition, StarterInfo)
 from colcon_robmosys.model.types import Component, Language
 from conftest import colcon, requires_ros, TEST_WORKSPACE
+from harness.launch_files import nodes_launch_file, read_launch_file
 
 INFO = StarterInfo('demo_msgs', 'Apache-2.0', (Maintainer('Jane "J" Roe', 'jane@example.com'),))
 MAINTAINER = ['--maintainer', 'Jane Roe <jane.roe@example.com>']

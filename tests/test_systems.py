@@ -22,13 +22,12 @@ import yaml
 
 from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
-from colcon_robmosys.devtools.system import (
-    activate_launch_file, read_activate_after, read_launch_file)
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
 from colcon_robmosys.model.types import (
     Component, Instance, Pattern, PortRef, Role, System, Workspace)
 from conftest import colcon, requires_ros, TEST_WORKSPACE
+from harness.launch_files import activate_launch_file, read_activate_after, read_launch_file
 
 #: What the launch files pass besides the node's identity (launch_ros API).
 LAUNCH_EXTRA = {'output': 'screen'}

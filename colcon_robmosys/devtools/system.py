@@ -1,141 +1,18 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
-"""Bring a generated system up the way its launch files would, without launch_ros.
+"""Drive the nodes of a running system from outside, as an operator's tools would.
 
-launch_ros is not on PyPI, so tests and the demo read the generated ``launch.py``
-(as Python source, never executing it), start each node with the command line
-launch_ros would build, and drive the lifecycle through the nodes' real services.
+:class:`LifecycleDriver` calls the nodes' real lifecycle and parameter services;
+tests and bench/ use it to bring nodes up and read them back.
 """
 
 from __future__ import annotations
 
-import ast
-from dataclasses import dataclass, field
 import os
-from pathlib import Path
 import time
 from typing import Any, Callable
 
 from colcon_robmosys.devtools.ros_env import FASTDDS_PROFILE
-
-
-@dataclass(frozen=True)
-class NodeLaunch:
-    """One ``LifecycleNode(...)`` of a generated launch file, as plain data."""
-
-    package: str
-    executable: str
-    name: str
-    namespace: str
-    remappings: tuple[tuple[str, str], ...]
-    params_files: tuple[Path, ...]
-    extra: dict[str, Any] = field(default_factory=dict)
-
-    @property
-    def fqn(self) -> str:
-        """Return the fully qualified node name."""
-        return f"{self.namespace.rstrip('/')}/{self.name}"
-
-    def command(self, install_dir: Path) -> list[str]:
-        """Return the command line launch_ros runs for this node."""
-        executable = install_dir / self.package / 'lib' / self.package / self.executable
-        return [str(executable), *self.ros_args()]
-
-    def ros_args(self) -> list[str]:
-        """Return the ``--ros-args`` part of the command line, as launch_ros builds it."""
-        args = ['--ros-args', '-r', f'__node:={self.name}']
-        if self.namespace:
-            args += ['-r', f'__ns:={self.namespace}']
-        for params_file in self.params_files:
-            args += ['--params-file', str(params_file)]
-        for source, target in self.remappings:
-            args += ['-r', f'{source}:={target}']
-        return args
-
-
-def _literal(node: ast.AST, names: dict[str, Any]) -> Any:
-    if isinstance(node, ast.Name) and node.id in names:
-        return names[node.id]
-    if isinstance(node, ast.List):
-        return [_literal(item, names) for item in node.elts]
-    return ast.literal_eval(node)
-
-
-def nodes_launch_file(share_dir: Path, instance: str = '') -> Path:
-    """Return the launch file of a system package that starts its nodes (all, or one)."""
-    stem = share_dir.name + (f'.{instance}' if instance else '')
-    return share_dir / 'launch' / f'{stem}.nodes.launch.py'
-
-
-def activate_launch_file(share_dir: Path, instance: str = '') -> Path:
-    """Return the launch file of a system package that starts and activates its nodes."""
-    stem = share_dir.name + (f'.{instance}' if instance else '')
-    return share_dir / 'launch' / f'{stem}.launch.py'
-
-
-def read_launch_file(path: Path, share_dir: Path) -> list[NodeLaunch]:
-    """Return the lifecycle nodes a generated launch file starts.
-
-    :param share_dir: ``share/<system package>`` of the install, where the
-      ``params_file`` of the launch file resolves
-    """
-    tree = ast.parse(path.read_text(encoding='utf-8'), filename=str(path))
-    names: dict[str, Any] = {}
-    for node in ast.walk(tree):
-        # params_file = os.path.join(get_package_share_directory(pkg), 'cfg/...')
-        if isinstance(node, ast.Assign) and isinstance(node.value, ast.Call) and \
-                len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
-            call = node.value
-            first = call.args[0] if call.args else None
-            if ast.unparse(call.func) == 'os.path.join' and \
-                    isinstance(first, ast.Call) and \
-                    ast.unparse(first.func) == 'get_package_share_directory':
-                relative = ast.literal_eval(call.args[1])
-                names[node.targets[0].id] = share_dir / relative
-    nodes = []
-    for node in ast.walk(tree):
-        # the instances: lifecycle nodes, and plain external nodes (the system
-        # manager, a Node too, has no name of an instance)
-        if isinstance(node, ast.Call) and \
-                ast.unparse(node.func) in ('LifecycleNode', 'Node') and \
-                any(k.arg == 'name' for k in node.keywords):
-            kwargs = {k.arg: _literal(k.value, names) for k in node.keywords
-                      if k.arg is not None}
-            nodes.append(NodeLaunch(
-                package=kwargs.pop('package'),
-                executable=kwargs.pop('executable'),
-                name=kwargs.pop('name'),
-                namespace=kwargs.pop('namespace', ''),
-                remappings=tuple(tuple(r) for r in kwargs.pop('remappings', [])),
-                params_files=tuple(Path(p) for p in kwargs.pop('parameters', [])),
-                extra=kwargs))
-    return nodes
-
-
-def read_activate_after(path: Path) -> dict[str, list[str]]:
-    """Return the ``ACTIVATE_AFTER`` table of a generated activate file.
-
-    Its keys are the instances the file manages (configures and activates),
-    each with the instances that must be active before it is activated.
-    """
-    tree = ast.parse(path.read_text(encoding='utf-8'), filename=str(path))
-    assignment = next(n for n in tree.body if isinstance(n, ast.Assign) and
-                      ast.unparse(n.targets[0]) == 'ACTIVATE_AFTER')
-    return ast.literal_eval(assignment.value)
-
-
-def activation_waves(activate_after: dict[str, list[str]]) -> list[list[str]]:
-    """Return the managed instances in waves: each once those it comes after are active."""
-    waves: list[list[str]] = []
-    done: set[str] = set()
-    while len(done) < len(activate_after):
-        wave = [n for n, after in activate_after.items()
-                if n not in done and all(a in done for a in after)]
-        if not wave:
-            raise ValueError(f'activation order cycle in {activate_after}')
-        waves.append(wave)
-        done.update(wave)
-    return waves
 
 
 def wait_until(condition: Callable[[], bool], timeout: float, period: float = 0.1) -> bool:
