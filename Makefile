@@ -66,7 +66,7 @@ $(VENV)/.stamp-package: $(VENV)/.stamp-ros $(PKG_FILES)
 	@touch $@
 
 demo: venv
-	$(VPY) tools/demo.py
+	$(VPY) tools/demo.py --distro $(ROS_DISTRO)
 
 # bin/pytest rather than 'python -m pytest': -m puts the working directory on
 # sys.path, and the source tree would shadow the installed package.
@@ -83,4 +83,5 @@ bench: bench-generation bench-colcon bench-runtime bench-bringup bench-cppbuild
 
 clean:
 	rm -rf $(VENV) $(SETUPTOOLS_LEFTOVERS) test_workspace/build test_workspace/install \
-	  test_workspace/log
+	  test_workspace/log test_workspace/build-$(ROS_DISTRO) test_workspace/install-$(ROS_DISTRO) \
+	  test_workspace/log-$(ROS_DISTRO)

@@ -1,91 +1,198 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
-"""Build test_workspace with colcon and run one of its systems.
+"""Build test_workspace with colcon and run one of its systems, as a user does.
 
-`make demo` runs this with the venv's Python (the publisher/subscriber
-system; `--system dummy_robot_bringup` runs the dummy robot). launch_ros is
-not on PyPI, so the system is brought up the way its generated launch.py
-describes: the same executables, node names, remappings and parameter file,
-then configured and activated through the nodes' lifecycle services in the
-order of activate.py, which leaves unmanaged instances alone.
+`make demo` runs this with the venv's Python, which is the ROS 2 underlay:
+
+1. ``colcon build`` in test_workspace;
+2. ``ros2 run <system> bringup`` in the environment of the install: the system
+   manager starts every instance, configures and activates them in the order of
+   the model and reports. ros2cli is not on PyPI, so this runs the executable
+   that ``ros2 run`` would run;
+3. while the system runs, it counts the messages on every topic that the model
+   connects, as ``ros2 topic hz`` would, then brings the system down with
+   Ctrl-C (SIGINT), as an operator does.
+
+It exits 0 when the build passed, every managed instance became active, every
+connected topic carried a message and bringup ended by itself with 0. Every ROS 2
+process keeps DDS on loopback, with a ROS_DOMAIN_ID of its own.
 """
 
 from __future__ import annotations
 
 import argparse
-import contextlib
+import json
+import os
 from pathlib import Path
+import signal
+import subprocess
 import sys
+import threading
 import time
+from typing import Any
 
 from colcon_robmosys.devtools import ros_env
-from colcon_robmosys.devtools.system import (
-    activate_launch_file, activation_waves, LifecycleDriver, nodes_launch_file,
-    read_activate_after, read_launch_file)
 
 REPO = Path(__file__).resolve().parent.parent
 
 WORKSPACE = REPO / 'test_workspace'
 
+#: seconds for each step: the build, the bring-up, the bring-down
+BUILD_TIMEOUT = 1200.0
+BRING_UP_TIMEOUT = 120.0
+BRING_DOWN_TIMEOUT = 30.0
 
-def build(domain_id: int) -> None:
+
+def say(text: str) -> None:
+    """Print a line of the demo's own, apart from what colcon and the system print."""
+    print(f'==> {text}', flush=True)
+
+
+def run_to_end(command: list[str], *, env: dict[str, str], timeout: float,
+               cwd: Path | None = None) -> int:
+    """Run a command with its output on the terminal; kill it after timeout."""
+    with subprocess.Popen(command, env=env, cwd=cwd, stdin=subprocess.DEVNULL,
+                          start_new_session=True) as process:
+        try:
+            return process.wait(timeout)
+        except BaseException:  # noqa: B902 - a timeout or a Ctrl-C: nothing left behind
+            os.killpg(process.pid, signal.SIGKILL)
+            raise
+
+
+def colcon_build(distro: str) -> list[str]:
+    """Return the command line that builds test_workspace with a distribution's venv.
+
+    Kilted's build, install and log folders are colcon's defaults, where README's own
+    ``colcon build`` puts them; Jazzy's stand beside them, so that neither build
+    reuses the other's CMake caches.
+    """
+    colcon = str(Path(sys.prefix) / 'bin' / 'colcon')
+    if distro == 'kilted':
+        return [colcon, 'build']
+    return [colcon, '--log-base', f'log-{distro}', 'build',
+            '--build-base', f'build-{distro}', '--install-base', f'install-{distro}']
+
+
+def install_of(distro: str) -> Path:
+    """Return the install folder of test_workspace built with a distribution's venv."""
+    return WORKSPACE / ('install' if distro == 'kilted' else f'install-{distro}')
+
+
+def build(distro: str, domain_id: int) -> None:
     """Build the workspace in place, showing colcon's output."""
-    print(f'==> colcon build in {WORKSPACE.relative_to(REPO)}', flush=True)
-    env = ros_env.loopback_env(domain_id)
-    result = ros_env.run([str(Path(sys.prefix) / 'bin' / 'colcon'), 'build'],
-                         env=env, cwd=WORKSPACE, timeout=1200)
-    print(result.stdout, result.stderr, sep='', end='', flush=True)
-    if result.returncode:
-        sys.exit(f'colcon build failed with exit code {result.returncode}')
+    command = colcon_build(distro)
+    say(f'{" ".join(["colcon", *command[1:]])}   (in {WORKSPACE.relative_to(REPO)}, '
+        f'with ROS 2 {distro.capitalize()} of {Path(sys.prefix).name})')
+    code = run_to_end(command, env=ros_env.loopback_env(domain_id), cwd=WORKSPACE,
+                      timeout=BUILD_TIMEOUT)
+    if code:
+        sys.exit(f'colcon build failed with exit code {code}')
 
 
-def run_system(system: str, domain_id: int, seconds: float) -> None:
-    """Start the system's nodes, activate them and show what they print."""
-    install = WORKSPACE / 'install'
-    share = install / system / 'share' / system
-    nodes = read_launch_file(nodes_launch_file(share), share)
-    by_name = {node.name: node for node in nodes}
-    managed = activation_waves(read_activate_after(activate_launch_file(share)))
+def run(system: str, install: Path, domain_id: int, seconds: float) -> int:
+    """Run the system in the environment of the install; return the exit status."""
     env = ros_env.workspace_env(install, ros_env.loopback_env(domain_id))
-    print(f'==> starting {system} (ROS_DOMAIN_ID={domain_id}, DDS on loopback)')
-    with contextlib.ExitStack() as stack:
-        processes = {}
-        for node in nodes:
-            print('    ' + ' '.join(node.command(install)))
-            processes[node.name] = stack.enter_context(
-                ros_env.background(node.command(install), env=env))
-        driver = stack.enter_context(LifecycleDriver(domain_id))
-        order = [by_name[name] for wave in managed for name in wave]
-        for transition in ('configure', 'activate'):
-            for node in order:
-                ok = driver.transition(node.fqn, transition)
-                print(f'==> {transition} {node.fqn}: {"ok" if ok else "FAILED"}')
-                if not ok:
-                    sys.exit(f'{node.fqn} failed to {transition}')
-        print(f'==> running for {seconds:g} s', flush=True)
-        time.sleep(seconds)
-        for node in reversed(order):
-            driver.transition(node.fqn, 'deactivate')
-        for name, process in processes.items():
-            print(f'==> output of {name}')
-            print(process.output(), end='', flush=True)
+    command = [sys.executable, __file__, '--run-system', system, '--seconds', str(seconds)]
+    return run_to_end(command, env=env,
+                      timeout=BRING_UP_TIMEOUT + seconds + BRING_DOWN_TIMEOUT + 30)
 
 
-def main() -> None:
+def run_system(system: str, seconds: float) -> int:
+    """Start the system's bringup, count its messages, bring it down; return the status.
+
+    This runs in the environment of the install (see :func:`run`), so that the
+    system's message packages and robmosys_runtime import here.
+    """
+    from ament_index_python.packages import get_package_prefix, get_package_share_directory
+    import rclpy
+    from rclpy.executors import SingleThreadedExecutor
+    from robmosys_runtime.smoke import interface, Probe, TOPIC_ENTITIES, wait_until_up
+
+    with open(Path(get_package_share_directory(system)) / 'bringup.json',
+              encoding='utf-8') as stream:
+        description = json.load(stream)
+    bringup = Path(get_package_prefix(system)) / 'lib' / system / 'bringup'
+    say(f'ros2 run {system} bringup   (ROS_DOMAIN_ID={os.environ["ROS_DOMAIN_ID"]}, '
+        f'DDS on loopback; this runs {bringup.relative_to(REPO)})')
+    topics = {c['name']: c['type'] for c in description['connections']
+              if c['entity'] in TOPIC_ENTITIES}
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    node = rclpy.create_node('demo_topic_counter', context=context)
+    executor = SingleThreadedExecutor(context=context)
+    executor.add_node(node)
+    spinner = threading.Thread(target=executor.spin, daemon=True)
+    spinner.start()
+    manager = subprocess.Popen([str(bringup)], stdin=subprocess.DEVNULL, start_new_session=True)
+    problems: list[str] = []
+    try:
+        probe = Probe(node)
+        for topic, type_name in topics.items():
+            probe.listen(topic, interface(type_name))
+        not_up = wait_until_up(probe, description, manager, BRING_UP_TIMEOUT)
+        if not_up:
+            problems.append(not_up)
+        else:
+            say(f'the system is up: running for {seconds:g} s')
+            before = {topic: probe.received(topic) for topic in topics}
+            time.sleep(seconds)
+            for topic, type_name in topics.items():
+                count = probe.received(topic) - before[topic]
+                say(f'{count} messages received in {seconds:g} s on {topic} ({type_name})')
+                if probe.received(topic) == 0:
+                    problems.append(f'no message on {topic}')
+    finally:
+        problems += bring_down(manager)
+        executor.shutdown()
+        spinner.join(10)
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
+    for problem in problems:
+        print(f'demo: error: {problem}', file=sys.stderr, flush=True)
+    if not problems:
+        say(f'{system} came up, carried data on each of its {len(topics)} connected topics '
+            'and came down cleanly')
+    return 1 if problems else 0
+
+
+def bring_down(manager: subprocess.Popen[Any]) -> list[str]:
+    """Bring the system down as an operator does, with Ctrl-C; return the problems."""
+    if manager.poll() is not None:
+        return [f'bringup exited early with code {manager.returncode}']
+    say('Ctrl-C (SIGINT) to bringup: the system comes down')
+    os.killpg(manager.pid, signal.SIGINT)
+    try:
+        code = manager.wait(BRING_DOWN_TIMEOUT)
+    except subprocess.TimeoutExpired:
+        os.killpg(manager.pid, signal.SIGKILL)
+        manager.wait()
+        return [f'bringup did not end within {BRING_DOWN_TIMEOUT:g} s of SIGINT']
+    return [f'bringup exited with code {code} after SIGINT'] if code else []
+
+
+def main() -> int:
     """Build, then run."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--seconds', type=float, default=4.0,
-                        help='how long the system runs (default: 4)')
+                        help='how long the system runs once it is up (default: 4)')
     parser.add_argument('--system', default='pubsub_system',
-                        help='the system package to run (default: pubsub_system)')
+                        help='the system package to run (default: pubsub_system; '
+                        'dummy_robot_bringup is the ROS 2 dummy robot)')
+    parser.add_argument('--distro', default='kilted', choices=('kilted', 'jazzy'),
+                        help="the ROS 2 distribution of this venv (make's ROS_DISTRO): "
+                        'jazzy builds into build-jazzy/ and install-jazzy/')
     parser.add_argument('--no-build', action='store_true',
-                        help='run what test_workspace/install holds')
+                        help='run what the install of test_workspace holds')
+    parser.add_argument('--run-system', metavar='SYSTEM', help=argparse.SUPPRESS)
     args = parser.parse_args()
+    if args.run_system:
+        return run_system(args.run_system, args.seconds)
     domain_id = ros_env.free_domain_id()
     if not args.no_build:
-        build(domain_id)
-    run_system(args.system, domain_id, args.seconds)
+        build(args.distro, domain_id)
+    return run(args.system, install_of(args.distro), domain_id, args.seconds)
 
 
 if __name__ == '__main__':
-    main()
+    sys.exit(main())

@@ -48,7 +48,7 @@ def interface(name: str) -> Any:
     return getattr(importlib.import_module(f'{package}.{kind}'), type_name)
 
 
-class _Probe:
+class Probe:
     """Listens to the topics of a system and calls its services and servers."""
 
     def __init__(self, node: Node) -> None:
@@ -63,10 +63,10 @@ class _Probe:
                 self._received[topic] = self._received.get(topic, 0) + 1
         self._node.create_subscription(msg_type, topic, count, _ANY_PUBLISHER)
 
-    def received(self, topic: str) -> bool:
-        """Tell whether a message arrived on a topic."""
+    def received(self, topic: str) -> int:
+        """Return how many messages arrived on a topic (0: none, which is false)."""
         with self._lock:
-            return self._received.get(topic, 0) > 0
+            return self._received.get(topic, 0)
 
     def call(self, name: str, srv_type: Any, request: Any, timeout: float) -> Optional[Any]:
         """Call a service; return its answer, or None if none came within timeout."""
@@ -96,6 +96,10 @@ class _Probe:
             client.destroy()
 
 
+#: the entities of a connection that is a topic: its messages can be counted
+TOPIC_ENTITIES = ('publisher', 'subscription')
+
+
 def _wait(condition: Callable[[], bool], timeout: float, period: float = 0.1) -> bool:
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
@@ -103,6 +107,34 @@ def _wait(condition: Callable[[], bool], timeout: float, period: float = 0.1) ->
             return True
         time.sleep(period)
     return condition()
+
+
+def wait_until_up(probe: Probe, description: Dict[str, Any],
+                  manager: 'subprocess.Popen[Any]', timeout: float) -> Optional[str]:
+    """
+    Wait until the manager reports every managed instance active.
+
+    :param manager: the process of the system's ``bringup``
+    :returns: None once the system is up; else why it did not come up (bringup
+        ended, or the timeout passed: with the manager's last report)
+    """
+    package = description['package']
+    answer: List[Any] = []
+
+    def all_active() -> bool:
+        if manager.poll() is not None:
+            return True
+        report = probe.call(f'/{package}_bringup/report', Trigger, Trigger.Request(), 5.0)
+        answer[:] = [report]
+        return report is not None and bool(report.success)
+    if _wait(all_active, timeout, period=0.5) and manager.poll() is None:
+        return None
+    if manager.poll() is not None:
+        return f'the system did not come up: bringup exited with code {manager.returncode}'
+    managed = sum(1 for i in description['instances'] if i['managed'])
+    last = answer[0].message if answer and answer[0] is not None else 'no report'
+    return (f'the system did not come up within {timeout:g} s '
+            f'({managed} managed instances):\n{last}')
 
 
 def run(package: str, *, timeout: float = 30.0, bring_up_timeout: float = 120.0,
@@ -154,30 +186,15 @@ def run(package: str, *, timeout: float = 30.0, bring_up_timeout: float = 120.0,
 
 def _check(node: Node, description: Dict[str, Any], manager: 'subprocess.Popen[bytes]',
            timeout: float, bring_up_timeout: float) -> List[str]:
-    package = description['package']
-    probe = _Probe(node)
+    probe = Probe(node)
     connections = description.get('connections', [])
-    topics = [c for c in connections if c['entity'] in ('publisher', 'subscription')]
-    for connection in topics:
-        # listening before the system comes up: the first messages count too
-        probe.listen(connection['name'], interface(connection['type']))
-
-    managed = sum(1 for i in description['instances'] if i['managed'])
-    answer: List[Any] = []
-
-    def all_active() -> bool:
-        if manager.poll() is not None:
-            return True
-        report = probe.call(f'/{package}_bringup/report', Trigger, Trigger.Request(), 5.0)
-        answer[:] = [report]
-        return report is not None and bool(report.success)
-    if not _wait(all_active, bring_up_timeout, period=0.5) or manager.poll() is not None:
-        last = answer[0].message if answer and answer[0] is not None else 'no report'
-        if manager.poll() is not None:
-            return [f'the system did not come up: bringup exited with code '
-                    f'{manager.returncode}']
-        return [f'the system did not come up within {bring_up_timeout:g} s '
-                f'({managed} managed instances):\n{last}']
+    for connection in connections:
+        if connection['entity'] in TOPIC_ENTITIES:
+            # listening before the system comes up: the first messages count too
+            probe.listen(connection['name'], interface(connection['type']))
+    not_up = wait_until_up(probe, description, manager, bring_up_timeout)
+    if not_up:
+        return [not_up]
 
     problems = []
     deadline = time.monotonic() + timeout
@@ -186,8 +203,8 @@ def _check(node: Node, description: Dict[str, Any], manager: 'subprocess.Popen[b
             f"{connection['type']})"
         left = max(1.0, deadline - time.monotonic())
         entity = connection['entity']
-        if entity in ('publisher', 'subscription'):
-            if not _wait(lambda: probe.received(connection['name']), left):
+        if entity in TOPIC_ENTITIES:
+            if not _wait(lambda: probe.received(connection['name']) > 0, left):
                 problems.append(f'no message on {what} within {timeout:g} s')
         elif entity == 'service':
             srv_type = interface(connection['type'])
