@@ -101,6 +101,28 @@ def test_an_instance_that_crashes_is_reported_with_what_it_holds_back(
     assert 'Traceback' not in output, output
 
 
+def test_an_instance_whose_package_is_not_installed_is_one_line_and_nothing_starts(
+        test_workspace_built, tmp_path):
+    description = _description(test_workspace_built)
+    for instance in description['instances']:
+        if instance['instance'] == 'level_sensor':
+            instance['package'] = 'not_installed_sensor'
+    path = tmp_path / 'bringup.json'
+    path.write_text(json.dumps(description))
+    domain_id = free_domain_id()
+    with _bringup(test_workspace_built, '--description', str(path),
+                  domain_id=domain_id) as bringup:
+        assert bringup.proc.wait(timeout=60) == 1, bringup.output()
+        output = bringup.output()
+    assert output.splitlines() == [
+        "bringup: error: instance level_sensor needs the package 'not_installed_sensor', "
+        'which is not installed (no prefix of AMENT_PREFIX_PATH has it: build it, or source '
+        'the install that has it); nothing was started'], output
+    # nothing started: no instance's process of the test's domain was left running
+    assert [name for name in ('level_watcher', 'receiver', 'add_server')
+            if _pids_of(name, domain_id)] == []
+
+
 def test_an_instance_that_never_answers_is_reported_within_its_timeout(
         test_workspace_built, tmp_path):
     # a process that runs but offers no lifecycle service (ends on SIGINT, quietly)
@@ -187,13 +209,14 @@ def test_the_state_of_every_instance_is_on_diagnostics(test_workspace_built):
         assert {v.key: v.value for v in sender.values}['state'] == 'active'
 
 
-def _pid_of(node_name: str, domain_id: int) -> int:
+def _pids_of(node_name: str, domain_id: int) -> list[int]:
     """
-    Return the pid of the process bringup started for an instance, in a ROS domain.
+    Return the pids of the processes bringup started for an instance, in a ROS domain.
 
     By its ROS domain, which is the test's own: tests of other sessions (CI runs
     Kilted's and Jazzy's side by side) run instances of the same names.
     """
+    pids = []
     for entry in Path('/proc').iterdir():
         if not entry.name.isdigit():
             continue
@@ -204,8 +227,15 @@ def _pid_of(node_name: str, domain_id: int) -> int:
             continue
         if f'__node:={node_name}'.encode() in argv and \
                 f'ROS_DOMAIN_ID={domain_id}'.encode() in environ:
-            return int(entry.name)
-    raise AssertionError(f'no process of {node_name}')
+            pids.append(int(entry.name))
+    return pids
+
+
+def _pid_of(node_name: str, domain_id: int) -> int:
+    """Return the pid of the one process bringup started for an instance, in a ROS domain."""
+    pids = _pids_of(node_name, domain_id)
+    assert pids, f'no process of {node_name}'
+    return pids[0]
 
 
 def test_an_instance_marked_respawn_comes_back_to_the_state_of_the_system(
@@ -390,7 +420,7 @@ def test_a_host_without_instances_is_an_error(test_workspace_built):
 
 def test_attached_the_manager_brings_up_nodes_it_did_not_start(test_workspace_built):
     """What <system>.launch.py runs: the nodes started by the launch, the manager attached."""
-    from colcon_robmosys.devtools.system import nodes_launch_file, read_launch_file
+    from harness.launch_files import nodes_launch_file, read_launch_file
     share = test_workspace_built.share(SYSTEM)
     nodes = read_launch_file(nodes_launch_file(share), share)
     domain_id = free_domain_id()

@@ -27,7 +27,7 @@ from typing import Any, Dict, List, Optional, Sequence
 
 from ament_index_python.packages import get_package_share_directory
 from robmosys_runtime.output import say
-from robmosys_runtime.processes import plan_processes, Processes
+from robmosys_runtime.processes import NotInstalled, plan_processes, Processes
 
 # rclpy is imported once the instances are starting: they start it too, in
 # parallel (see main)
@@ -81,8 +81,11 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     # exits are watched once the manager is there (Manager.start).
     processes = Processes(on_exit=None)
     if not args.attach:
-        groups = plan_processes(description, args.description, params_file,
-                                shared=args.processes)
+        try:
+            groups = plan_processes(description, args.description, params_file,
+                                    shared=args.processes)
+        except NotInstalled as error:
+            return not_installed(error)
         for group, (_, command_line) in groups.items():
             processes.start(group, command_line)
 
@@ -141,6 +144,13 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     return status if args.exit_on_failure else 0
 
 
+def not_installed(error: NotInstalled) -> int:
+    """Report the packages that instances need and do not find; return the exit status."""
+    for problem in error.problems:
+        say('error', f'{problem}; nothing was started')
+    return 1
+
+
 def without_ros_args(argv: Sequence[str]) -> List[str]:
     """
     Return the arguments without their ROS arguments, as rclpy's remove_ros_args does.
@@ -167,8 +177,11 @@ def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file:
     The manager, on its own host, brings them up with the others; instances
     marked respawn are started again here, and its heartbeat brings them back.
     """
-    groups = plan_processes(description, args.description, params_file, host=args.host,
-                            shared=args.processes, containers=False)
+    try:
+        groups = plan_processes(description, args.description, params_file, host=args.host,
+                                shared=args.processes, containers=False)
+    except NotInstalled as error:
+        return not_installed(error)
     if not groups:
         say('error', f'no instance of the system runs on the host {args.host}')
         return 1

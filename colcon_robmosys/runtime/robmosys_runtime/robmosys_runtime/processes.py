@@ -19,7 +19,7 @@ import threading
 import time
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
-from ament_index_python.packages import get_package_prefix
+from ament_index_python.packages import get_package_prefix, PackageNotFoundError
 
 #: seconds each process has to end after SIGINT, before SIGKILL
 STOP_TIMEOUT = 10.0
@@ -119,6 +119,36 @@ def node_arguments(instance: Dict[str, Any], params_file: str) -> List[str]:
 Groups = Dict[str, Tuple[List[str], List[str]]]
 
 
+class NotInstalled(Exception):
+    """Packages that instances of a host need are not installed: nothing was started."""
+
+    def __init__(self, problems: List[str]) -> None:
+        super().__init__('\n'.join(problems))
+        #: one line per missing package, naming the instances that need it
+        self.problems = problems
+
+
+def _check_installed(needs: Dict[str, List[str]]) -> None:
+    """
+    Raise :class:`NotInstalled` for every package of ``needs`` that is not installed.
+
+    :param needs: package -> the instances that need it
+    """
+    problems = []
+    for package, instances in needs.items():
+        try:
+            get_package_prefix(package)
+        except PackageNotFoundError:
+            which = ', '.join(instances)
+            problems.append(
+                f"instance{'s' if len(instances) > 1 else ''} {which} need"
+                f"{'' if len(instances) > 1 else 's'} the package '{package}', which is not "
+                'installed (no prefix of AMENT_PREFIX_PATH has it: build it, or source the '
+                'install that has it)')
+    if problems:
+        raise NotInstalled(problems)
+
+
 #: the group of the C++ instances in a shared component container
 CPP_GROUP = 'C++ instances'
 
@@ -139,15 +169,24 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
         (``processes: shared``)
     :param containers: whether C++ instances may share a container (the
         manager loads them into it: ``CPP_GROUP``)
+    :raises NotInstalled: when a package that an instance needs is not installed
     """
     if shared is None:
         shared = description.get('processes') == 'shared'
+    instances = [i for i in description['instances'] if i.get('host', '') == host]
+    needs: Dict[str, List[str]] = {}
+    for instance in instances:
+        if not instance.get('command'):
+            needs.setdefault(instance['package'], []).append(instance['instance'])
+    loaded_here = [i['instance'] for i in instances
+                   if shared and containers and i.get('plugin') and not i.get('command')]
+    if loaded_here:
+        needs['rclcpp_components'] = loaded_here
+    _check_installed(needs)
     groups: Groups = {}
     together = []
     loaded = []
-    for instance in description['instances']:
-        if instance.get('host', '') != host:
-            continue
+    for instance in instances:
         if shared and instance.get('python_class') and not instance.get('command'):
             together.append(instance['instance'])
         elif shared and containers and instance.get('plugin') and not instance.get('command'):

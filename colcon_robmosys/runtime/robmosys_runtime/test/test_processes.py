@@ -5,7 +5,8 @@
 import sys
 
 from conftest import wait_until
-from robmosys_runtime.processes import Processes
+import pytest
+from robmosys_runtime.processes import NotInstalled, plan_processes, Processes
 
 
 def test_a_process_is_starting_then_running_then_exited():
@@ -23,3 +24,28 @@ def test_a_process_is_starting_then_running_then_exited():
     finally:
         processes.stop(timeout=5.0)
     assert processes.state('laser') == 'exited'
+
+
+def _instance(name, package, **extra):
+    return dict({'instance': name, 'package': package, 'executable': name, 'name': name,
+                 'namespace': '', 'remappings': [], 'host': ''}, **extra)
+
+
+def test_instances_whose_package_is_not_installed_are_named_before_anything_starts():
+    description = {'package': 'a_system', 'instances': [
+        _instance('sensor', 'no_such_sensor_package'),
+        _instance('twin', 'no_such_sensor_package'),
+        _instance('watcher', 'no_such_watcher_package'),
+        _instance('driver', 'no_such_driver_package', command=['/bin/true']),
+        _instance('remote', 'no_such_remote_package', host='robot')]}
+    with pytest.raises(NotInstalled) as raised:
+        plan_processes(description, 'bringup.json', 'params.yaml')
+    # one line per package, every instance that needs it; an instance with a
+    # command of its own, or on another host, needs nothing installed here
+    assert raised.value.problems == [
+        "instances sensor, twin need the package 'no_such_sensor_package', which is not "
+        'installed (no prefix of AMENT_PREFIX_PATH has it: build it, or source the install '
+        'that has it)',
+        "instance watcher needs the package 'no_such_watcher_package', which is not "
+        'installed (no prefix of AMENT_PREFIX_PATH has it: build it, or source the install '
+        'that has it)']
