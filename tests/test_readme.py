@@ -29,10 +29,46 @@ def _shell_block() -> list[str]:
     return [line.split('#')[0].strip() for line in block.group(1).splitlines()]
 
 
+def _first_block() -> list[str]:
+    """Return the commands of README's first block, without their comments."""
+    block = re.search(r'```sh\n(.*?)```', (REPO / 'README.md').read_text(), re.DOTALL)
+    assert block, 'README shows its commands in a sh block'
+    return [line.split('#')[0].strip() for line in block.group(1).splitlines()
+            if line.split('#')[0].strip()]
+
+
+def _ci_make_commands() -> list[list[str]]:
+    """Return the make commands .ci/run runs, in order, each as its words."""
+    commands = []
+    for line in (REPO / '.ci' / 'run').read_text().splitlines():
+        code = line.split('#')[0]
+        if code.lstrip().startswith('echo'):
+            continue
+        for command in re.findall(r'\bmake\b[^;&|}\n]*', code):
+            commands.append(shlex.split(command))
+    return commands
+
+
 def test_readme_starts_with_the_two_commands():
     head = (REPO / 'README.md').read_text().split('\n## ')[0]
+    assert _first_block() == ['make demo', 'make test']
     assert re.search(r'^make demo\b', head, re.MULTILINE)
     assert re.search(r'^make test\b', head, re.MULTILINE)
+
+
+def test_ci_runs_the_commands_of_readme_on_each_distribution():
+    """.ci/run runs README's first block as written, on Kilted and again on Jazzy."""
+    lanes: dict[str, list[str]] = {}
+    for words in _ci_make_commands():
+        settings = dict(w.split('=', 1) for w in words[1:] if '=' in w)
+        targets = [w for w in words[1:] if '=' not in w]
+        # `make venv` first: both commands bootstrap it anyway, and one venv is built
+        # at a time (they share setuptools' build folder of the tree)
+        if targets == ['venv']:
+            continue
+        lanes.setdefault(settings.get('ROS_DISTRO', 'kilted'), []).append(
+            ' '.join(['make', *targets]))
+    assert lanes == {'kilted': _first_block(), 'jazzy': _first_block()}
 
 
 @requires_ros
