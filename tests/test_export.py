@@ -151,3 +151,42 @@ def test_a_file_changed_in_the_export_is_kept(tmp_path):
     assert f'{changed}:' in result.stderr and 'refusing to overwrite' in result.stderr, \
         result.stderr
     assert changed.read_text() == '# patched for the release\n'
+
+
+def _tree(folder: Path) -> dict[str, bytes]:
+    return {p.relative_to(folder).as_posix(): p.read_bytes()
+            for p in sorted(folder.rglob('*')) if p.is_file()}
+
+
+def test_hand_written_packages_of_the_selection_are_named_once_each(tmp_path):
+    workspace = _workspace(tmp_path / 'ws')
+    up_to = ('--packages-up-to', 'handwritten_system', 'map_tools', 'hand_level_sensor')
+    export = tmp_path / 'release' / 'src'
+    result = _export(workspace, export, *up_to)
+    assert result.returncode == 0, result.stdout + result.stderr
+    hand_written = {'map_tools', 'hand_level_sensor', 'handwritten_nodes'}
+    for name in hand_written:
+        lines = [line for line in result.stdout.splitlines()
+                 if line.startswith(f'not exported: {name} ')]
+        assert len(lines) == 1, result.stdout
+        assert lines[0].startswith(
+            f'not exported: {name} (src/{name}): a hand-written package, not generated '
+            'from a model: nothing to export, its sources are the package'), lines[0]
+        assert lines[0].endswith('; handwritten_system depends on it') == (
+            name == 'handwritten_nodes'), lines[0]
+        assert name not in result.stderr
+    # every package of the selection is exported or said not to be, once
+    selection = colcon(['list', '--names-only', *up_to], cwd=workspace, timeout=120)
+    assert selection.returncode == 0, selection.stderr
+    said = re.findall(r'^(?:generated|exported|not exported:) (\w+)', result.stdout, re.M)
+    assert sorted(said) == sorted(selection.stdout.split()), result.stdout
+    # and the export is what the generated packages alone give
+    exported = sorted(p.name for p in export.iterdir())
+    assert not hand_written & set(exported)
+    alone = tmp_path / 'alone' / 'src'
+    result = _export(workspace, alone, '--packages-select',
+                     *(set(exported) - {'robmosys_runtime'}))
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert 'not exported' not in result.stdout
+    assert sorted(p.name for p in alone.iterdir()) == exported
+    assert _tree(export) == _tree(alone)

@@ -4,6 +4,7 @@
 import os
 from pathlib import Path
 import re
+import sys
 
 from colcon_robmosys.report import FORMATS
 from colcon_robmosys.report import ReportRequest
@@ -39,3 +40,33 @@ def diagnostics_request(args):
     """Return the report the command line asks for, or None."""
     return ReportRequest.of(getattr(args, 'diagnostics_format', None),
                             getattr(args, 'diagnostics_file', None))
+
+
+def add_subverbs(parser, *, title, dest):
+    """Add the sub-verbs of a verb: the action to add each one's parser to.
+
+    The sub-verb is not required to argparse (see :func:`missing_subverb`):
+    colcon-defaults parses the command line once before colcon does, with
+    --help silenced and the required arguments relaxed, but only those added
+    with ``add_argument``. A subparsers action with ``required=True`` fails that
+    first parse, and ``colcon VERB --help`` exited 2 with 'the following
+    arguments are required' instead of printing the help (colcon-core#477;
+    colcon's own verbs with sub-verbs, ``colcon metadata``, check in ``main``).
+    """
+    return parser.add_subparsers(title=title, dest=dest)
+
+
+def missing_subverb(parser, subverbs, args):
+    """Return 2 after argparse's usage error if no sub-verb was given, else None.
+
+    :param parser: the verb's parser, given to ``add_arguments``
+    :param subverbs: what :func:`add_subverbs` returned for it
+    :param args: the parsed command line
+    """
+    if getattr(args, subverbs.dest, None) is not None:
+        return None
+    # what argparse prints for a missing required argument, with its code
+    parser.print_usage(sys.stderr)
+    print(f'{parser.prog}: error: the following arguments are required: '
+          f"{{{','.join(subverbs.choices)}}}", file=sys.stderr)
+    return 2

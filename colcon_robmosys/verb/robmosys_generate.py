@@ -91,6 +91,8 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
             d.descriptor for d in decorators
             if d.selected and d.descriptor.type.startswith('robmosys.')]
         if not selected:
+            if args.export is not None:
+                _say_not_exported(decorators, [], uses_runtime=False)
             print('No RobMoSys model selected', file=sys.stderr)
             return 0
         result = checked_result(selected[0])
@@ -155,6 +157,8 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
                 print_diagnostics(error.diagnostics)
                 found += error.diagnostics
                 status = 1
+        if args.export is not None:
+            _say_not_exported(decorators, selected, uses_runtime=uses_runtime)
         provider = installed_runtime(
             ignored=[Path(getattr(args, 'install_base', None) or 'install')])
         if args.export is not None and uses_runtime and provider is not None:
@@ -175,6 +179,33 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
                   f'{len(report.unchanged)} unchanged, '
                   f'{len(report.removed)} removed')
         return status
+
+
+def _say_not_exported(decorators, models, *, uses_runtime):
+    """Say, once per package, which packages of the selection are not exported, and why.
+
+    An export holds what models generate. A hand-written package of the
+    selection is its own source already: the user releases it from there.
+    robmosys_runtime goes along when an exported package uses it (the lines
+    about it follow); selected for a hand-written package alone, it does not.
+
+    :param decorators: the package decorators of the run
+    :param models: the descriptors of the selected models
+    :param uses_runtime: whether an exported package uses robmosys_runtime
+    """
+    others = {d.descriptor.name: d.descriptor for d in decorators
+              if d.selected and not d.descriptor.type.startswith('robmosys.')}
+    if others.pop(RUNTIME_PACKAGE, None) is not None and not uses_runtime:
+        print(f'not exported: {RUNTIME_PACKAGE}: no exported package uses it')
+    for name, descriptor in sorted(others.items()):
+        dependents = sorted(
+            m.name for m in models if name in m.get_dependencies(categories=('build', 'run')))
+        needed = (f"; {', '.join(dependents)} "
+                  f"{'depends' if len(dependents) == 1 else 'depend'} on it"
+                  if dependents else '')
+        print(f'not exported: {name} ({display_path(descriptor.path)}): a hand-written '
+              f'package, not generated from a model: nothing to export, its sources are '
+              f'the package{needed}')
 
 
 def _runtime_files():

@@ -16,8 +16,10 @@ from colcon_robmosys.importer.interfaces import import_interfaces
 from colcon_robmosys.importer.running import import_running_system
 from colcon_robmosys.model import rosidl
 from colcon_robmosys.model.names import package_problem
+from colcon_robmosys.verb import add_subverbs
 from colcon_robmosys.verb import display_path
 from colcon_robmosys.verb import MAINTAINER
+from colcon_robmosys.verb import missing_subverb
 
 
 class RobmosysImportVerb(VerbExtensionPoint):
@@ -30,11 +32,12 @@ class RobmosysImportVerb(VerbExtensionPoint):
     def __init__(self):  # noqa: D107
         super().__init__()
         satisfies_version(VerbExtensionPoint.EXTENSION_POINT_VERSION, '^1.0')
+        # the verb's parser and its sub-verbs: main() reports a missing one
+        self._parser = self._kinds = None
 
     def add_arguments(self, *, parser):  # noqa: D102
-        kinds = parser.add_subparsers(
-            title='what to import', dest='what', metavar='{interfaces,graph}')
-        kinds.required = True
+        self._parser = parser
+        self._kinds = kinds = add_subverbs(parser, title='what to import', dest='what')
         interfaces = kinds.add_parser(
             'interfaces',
             help='Service definitions of installed interface packages '
@@ -80,6 +83,9 @@ class RobmosysImportVerb(VerbExtensionPoint):
 
     def main(self, *, context):  # noqa: D102
         args = context.args
+        missing = missing_subverb(self._parser, self._kinds, args)
+        if missing:
+            return missing
         try:
             rosidl.require()  # it reads interface files and checks names
         except RobmosysError as error:

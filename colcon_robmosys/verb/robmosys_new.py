@@ -25,8 +25,10 @@ from colcon_robmosys.model.names import package_problem
 from colcon_robmosys.model.types import Component
 from colcon_robmosys.model.types import Language
 from colcon_robmosys.package_discovery.robmosys import METADATA_KEY
+from colcon_robmosys.verb import add_subverbs
 from colcon_robmosys.verb import display_path
 from colcon_robmosys.verb import MAINTAINER
+from colcon_robmosys.verb import missing_subverb
 
 #: what the kinds say in the help and in what the verb prints
 KINDS = {
@@ -46,11 +48,12 @@ class RobmosysNewVerb(VerbExtensionPoint):
     def __init__(self):  # noqa: D107
         super().__init__()
         satisfies_version(VerbExtensionPoint.EXTENSION_POINT_VERSION, '^1.0')
+        # the verb's parser and its sub-verbs: main() reports a missing one
+        self._parser = self._kinds = None
 
     def add_arguments(self, *, parser):  # noqa: D102
-        kinds = parser.add_subparsers(
-            title='the kind of model', dest='kind', metavar='{definition,component,system}')
-        kinds.required = True
+        self._parser = parser
+        self._kinds = kinds = add_subverbs(parser, title='the kind of model', dest='kind')
         for kind, help_ in KINDS.items():
             sub = kinds.add_parser(kind, help=help_)
             sub.add_argument(
@@ -87,6 +90,9 @@ class RobmosysNewVerb(VerbExtensionPoint):
 
     def main(self, *, context):  # noqa: D102
         args = context.args
+        missing = missing_subverb(self._parser, self._kinds, args)
+        if missing:
+            return missing
         problems = [f'error: {p}' for p in name_problems(args.kind, args.name)]
         maintainers, problem = _maintainers(args.maintainer)
         if problem:
