@@ -75,9 +75,11 @@ def plan_package(workspace: Workspace, package: str) -> PackagePlan:
         component = plan_component(model)
         folders = user_folders(model, workspace)
         if model.language is Language.PYTHON:
-            plan = python_package(spell_python(model, component, folders), model_dir)
+            plan = python_package(spell_python(model, component, folders), model_dir,
+                                  model.location)
         else:
-            plan = cpp_package(spell_cpp(model, component, folders), model_dir)
+            plan = cpp_package(spell_cpp(model, component, folders), model_dir,
+                               model.location)
     else:
         plan = system_package(plan_system(model, workspace), model_dir)
     # the model, installed with the package: workspaces built on this one use it
