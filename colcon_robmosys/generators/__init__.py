@@ -26,7 +26,7 @@ from colcon_robmosys.generators.render import render
 from colcon_robmosys.generators.stamp import StampStore
 from colcon_robmosys.generators.system import system_package
 from colcon_robmosys.generators.usercode import (
-    check_user_file, merge_conflicts, user_tree)
+    check_user_file, merge_conflicts, orphan_problems, user_tree)
 from colcon_robmosys.generators.writer import (
     create_user_file, GENERATED_MARKER, is_generated, read_current,
     remove_generated, remove_leftovers, sync_folders, write_generated)
@@ -100,7 +100,14 @@ def create_missing_user_files(plan: PackagePlan) -> list[Path]:
     """Create the implementation files the user lacks, from the model.
 
     Existing files are never touched.
+
+    :raises RobmosysError: if implementation files of a component the model
+      no longer has lie there: a fresh file beside them would leave the
+      user's code behind, unnoticed
     """
+    orphans = orphan_problems(plan)
+    if orphans:
+        raise RobmosysError(orphans)
     created = []
     for user_file in plan.user_files:
         path = plan.model_dir / user_file.source_path
@@ -133,7 +140,8 @@ def generate_package(plan: PackagePlan, out_dir: Path, *,
     :param stamps: where to record the generation, under the fingerprint
       of its inputs (see :func:`unchanged_package`)
 
-    :raises RobmosysError: if the user's code is missing or incomplete
+    :raises RobmosysError: if the user's code is missing or incomplete, or
+      left behind by a component renamed (see :func:`orphan_problems`)
     """
     problems: list[Diagnostic] = []
     outputs: dict[str, tuple[bytes, bool]] = {}
@@ -142,9 +150,14 @@ def generate_package(plan: PackagePlan, out_dir: Path, *,
         outputs[spec.path] = (render(spec.template, spec.context)
                               .encode('utf-8'), spec.executable)
     skeletons = []
+    # a file of the component missing is then one to rename, which it says
+    orphans = orphan_problems(plan)
+    problems += orphans
     for user_file in plan.user_files:
         source = plan.model_dir / user_file.source_path
         if not source.is_file():
+            if orphans:
+                continue
             problems.append(Diagnostic(
                 Location(str(source)),
                 'the implementation file is missing: run '
