@@ -21,7 +21,8 @@ from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.generators import create_missing_user_files, generate_package
-from colcon_robmosys.generators import PackagePlan, plan_package
+from colcon_robmosys.generators import PackagePlan, plan_package, StampStore
+from colcon_robmosys.generators import unchanged_package
 from colcon_robmosys.generators.usercode import orphan_problems
 from conftest import colcon, requires_ros
 from harness.fake_ament import fake_ament_index
@@ -121,6 +122,15 @@ def test_a_python_component_renamed_is_one_error_until_its_file_is_renamed(tmp_p
     installed = list((tmp_path / 'install' / 'sv_py').rglob('RenamedPy_impl.py'))
     assert [p.read_text() for p in installed] == [renamed.read_text()]
     assert 'my own fTick' in renamed.read_text()
+
+    # the old file back (a checkout, say), the model as it was at the last build:
+    # the generation the stamps would skip reports it
+    impl.write_bytes(mine[impl])
+    error = (f"{where}: error: {impl}: the implementation of a component 'SurvivorPy', "
+             "which the package 'sv_py' does not have; was 'SurvivorPy' renamed to "
+             "'RenamedPy'? move what you need of SurvivorPy_impl.py into RenamedPy_impl.py, "
+             'then delete it')
+    _refused(colcon(['build'], cwd=tmp_path), error, 'sv_py', tmp_path)
 
 
 @requires_ros
@@ -242,3 +252,20 @@ def test_generation_refuses_and_makes_no_file_beside_the_one_left_behind(workspa
     assert len(raised.value.diagnostics) == 1, raised.value
     assert workspace.user_files() == before
     assert not (workspace.root / 'out').exists()
+
+
+def test_stamps_do_not_skip_a_generation_with_a_file_left_behind(workspace, index):
+    create_missing_user_files(_plan(workspace, index))
+    [old] = workspace.impl()
+    content = old.read_bytes()
+    old.unlink()
+    workspace.rename('New')
+    plan = _plan(workspace, index)
+    create_missing_user_files(plan)
+    stamps, out = StampStore(workspace.root / 'stamps'), workspace.root / 'out'
+    generate_package(plan, out, stamps=stamps, fingerprint='model', standalone=False)
+    assert unchanged_package(out, stamps, 'model', plan) is not None
+    old.write_bytes(content)
+    assert unchanged_package(out, stamps, 'model', plan) is None
+    with pytest.raises(RobmosysError):
+        generate_package(plan, out, stamps=stamps, fingerprint='model', standalone=False)

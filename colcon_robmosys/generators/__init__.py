@@ -206,12 +206,18 @@ def write_tree(files: dict[str, tuple[bytes, bool]], out_dir: Path, *,
 
 
 def unchanged_package(out_dir: Path, stamps: StampStore | None,
-                      fingerprint: str) -> GenerationReport | None:
+                      fingerprint: str, plan: PackagePlan | None = None
+                      ) -> GenerationReport | None:
     """Return the report of a generation that would change nothing, if so.
 
+    :param plan: the package's plan: implementation files of a component
+      renamed that lie there now (see :func:`orphan_problems`) make the
+      package one to generate, which reports them. The stamps know the
+      user's files a generation read, not those added since, and a C++
+      build would compile them.
     :returns: None if the package has to be generated
     """
-    if stamps is None:
+    if stamps is None or (plan is not None and orphan_problems(plan)):
         return None
     files = stamps.unchanged(out_dir, fingerprint)
     if files is None:
