@@ -26,7 +26,7 @@ from colcon_robmosys.generators.render import render
 from colcon_robmosys.generators.stamp import StampStore
 from colcon_robmosys.generators.system import system_package
 from colcon_robmosys.generators.usercode import (
-    check_user_file, merge_conflicts, user_tree)
+    check_user_file, merge_conflicts, orphan_problems, user_tree)
 from colcon_robmosys.generators.writer import (
     create_user_file, GENERATED_MARKER, is_generated, read_current,
     remove_generated, remove_leftovers, sync_folders, write_generated)
@@ -75,9 +75,11 @@ def plan_package(workspace: Workspace, package: str) -> PackagePlan:
         component = plan_component(model)
         folders = user_folders(model, workspace)
         if model.language is Language.PYTHON:
-            plan = python_package(spell_python(model, component, folders), model_dir)
+            plan = python_package(spell_python(model, component, folders), model_dir,
+                                  model.location)
         else:
-            plan = cpp_package(spell_cpp(model, component, folders), model_dir)
+            plan = cpp_package(spell_cpp(model, component, folders), model_dir,
+                               model.location)
     else:
         plan = system_package(plan_system(model, workspace), model_dir)
     # the model, installed with the package: workspaces built on this one use it
@@ -98,7 +100,14 @@ def create_missing_user_files(plan: PackagePlan) -> list[Path]:
     """Create the implementation files the user lacks, from the model.
 
     Existing files are never touched.
+
+    :raises RobmosysError: if implementation files of a component the model
+      no longer has lie there: a fresh file beside them would leave the
+      user's code behind, unnoticed
     """
+    orphans = orphan_problems(plan)
+    if orphans:
+        raise RobmosysError(orphans)
     created = []
     for user_file in plan.user_files:
         path = plan.model_dir / user_file.source_path
@@ -131,7 +140,8 @@ def generate_package(plan: PackagePlan, out_dir: Path, *,
     :param stamps: where to record the generation, under the fingerprint
       of its inputs (see :func:`unchanged_package`)
 
-    :raises RobmosysError: if the user's code is missing or incomplete
+    :raises RobmosysError: if the user's code is missing or incomplete, or
+      left behind by a component renamed (see :func:`orphan_problems`)
     """
     problems: list[Diagnostic] = []
     outputs: dict[str, tuple[bytes, bool]] = {}
@@ -140,9 +150,14 @@ def generate_package(plan: PackagePlan, out_dir: Path, *,
         outputs[spec.path] = (render(spec.template, spec.context)
                               .encode('utf-8'), spec.executable)
     skeletons = []
+    # a file of the component missing is then one to rename, which it says
+    orphans = orphan_problems(plan)
+    problems += orphans
     for user_file in plan.user_files:
         source = plan.model_dir / user_file.source_path
         if not source.is_file():
+            if orphans:
+                continue
             problems.append(Diagnostic(
                 Location(str(source)),
                 'the implementation file is missing: run '
@@ -191,12 +206,18 @@ def write_tree(files: dict[str, tuple[bytes, bool]], out_dir: Path, *,
 
 
 def unchanged_package(out_dir: Path, stamps: StampStore | None,
-                      fingerprint: str) -> GenerationReport | None:
+                      fingerprint: str, plan: PackagePlan | None = None
+                      ) -> GenerationReport | None:
     """Return the report of a generation that would change nothing, if so.
 
+    :param plan: the package's plan: implementation files of a component
+      renamed that lie there now (see :func:`orphan_problems`) make the
+      package one to generate, which reports them. The stamps know the
+      user's files a generation read, not those added since, and a C++
+      build would compile them.
     :returns: None if the package has to be generated
     """
-    if stamps is None:
+    if stamps is None or (plan is not None and orphan_problems(plan)):
         return None
     files = stamps.unchanged(out_dir, fingerprint)
     if files is None:

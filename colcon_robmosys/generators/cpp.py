@@ -7,8 +7,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from colcon_robmosys.errors import Location
 from colcon_robmosys.generators.plan import (
-    files_of, PackagePlan, Row, user_files_of, UserRow)
+    files_of, implementation_of, PackagePlan, Row, user_files_of, UserRow)
 from colcon_robmosys.mapping.cpp_context import CppComponent
 
 _SRC = 'src-gen/{package}'
@@ -39,7 +40,8 @@ USER_FILES = (
 )
 
 
-def cpp_package(context: CppComponent, model_dir: Path) -> PackagePlan:
+def cpp_package(context: CppComponent, model_dir: Path,
+                location: Location) -> PackagePlan:
     """Return the files of a C++ component package."""
     return PackagePlan(
         name=context.package, kind='component', model_dir=model_dir,
@@ -47,6 +49,7 @@ def cpp_package(context: CppComponent, model_dir: Path) -> PackagePlan:
         exec_depends=context.find_packages,
         files=files_of(FILES, context),
         user_files=user_files_of(USER_FILES, context),
+        implementation=implementation_of(USER_FILES, context, location),
         user_folders=context.folders.all,
         prefix_requirements=context.prefix_requirements,
         summary={'executables': [context.cls], 'language': 'cpp'})

@@ -10,8 +10,10 @@ every template are a typed, frozen context of the mapping.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 from typing import Any, Mapping
+
+from colcon_robmosys.errors import Location
 
 
 @dataclass(frozen=True)
@@ -47,6 +49,25 @@ class UserFile:
 
 
 @dataclass(frozen=True)
+class Implementation:
+    """How the implementation files of a component are named, where they go.
+
+    A file of that name after another class belongs to no component of the
+    model: a component renamed, its files left behind (see
+    :func:`colcon_robmosys.generators.usercode.orphan_problems`).
+    """
+
+    #: the folder of the user's code, relative to the model's directory
+    folder: str
+    #: the component's class: its files are ``<component>_impl<suffix>``
+    component: str
+    #: the suffixes of the files, the one that declares the class first
+    suffixes: tuple[str, ...]
+    #: where the model names the component
+    location: Location
+
+
+@dataclass(frozen=True)
 class PackagePlan:
     """Everything needed to generate one ROS 2 package."""
 
@@ -65,6 +86,8 @@ class PackagePlan:
     #: a folder of the user's -> the generated folder it is installed with
     #: (a Python package): no file of the user's may take a generated name
     merged_folders: Mapping[str, str] = field(default_factory=dict)
+    #: how the implementation files of a component are named (components)
+    implementation: Implementation | None = None
     #: packages the build needs from the ROS 2 prefix, not from the
     #: workspace (rclcpp for C++): without them the build is skipped
     prefix_requirements: tuple[str, ...] = ()
@@ -152,3 +175,15 @@ def user_files_of(rows: tuple[UserRow, ...],
             required_class=_path(row.required_class, context),
             skeleton_path=_path(row.skeleton_path, context))
         for row in rows if not row.when or getattr(context, row.when))
+
+
+def implementation_of(rows: tuple[UserRow, ...], context: Any,
+                      location: Location) -> Implementation:
+    """Return how the implementation files of a table's component are named.
+
+    Every row is ``<folder>/{cls}_impl<suffix>``; a component without
+    functions of the user's has the same names, though no file is made.
+    """
+    paths = [PurePosixPath(_path(row.source_path, context)) for row in rows]
+    return Implementation(str(paths[0].parent), context.cls,
+                          tuple(p.suffix for p in paths), location)

@@ -7,8 +7,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from colcon_robmosys.errors import Location
 from colcon_robmosys.generators.plan import (
-    files_of, PackagePlan, Row, user_files_of, UserRow)
+    files_of, implementation_of, PackagePlan, Row, user_files_of, UserRow)
 from colcon_robmosys.mapping.python_context import PyComponent
 
 _SKEL = 'src-skel/{package}/{cls}_impl_skel.py'
@@ -35,13 +36,15 @@ USER_FILES = (
 )
 
 
-def python_package(context: PyComponent, model_dir: Path) -> PackagePlan:
+def python_package(context: PyComponent, model_dir: Path,
+                   location: Location) -> PackagePlan:
     """Return the files of a Python component package."""
     return PackagePlan(
         name=context.package, kind='component', model_dir=model_dir,
         build_depends=context.depends, exec_depends=context.exec_depends,
         files=files_of(FILES, context),
         user_files=user_files_of(USER_FILES, context),
+        implementation=implementation_of(USER_FILES, context, location),
         user_folders=context.folders.all,
         # the user's modules join the generated ones in one Python package
         merged_folders={context.folders.code: context.package},

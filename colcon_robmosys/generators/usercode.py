@@ -1,7 +1,11 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-"""The user's files: the implementation checked against the model, the others found."""
+"""The user's files: the implementation checked against the model, the others found.
+
+Also the implementation files of no component of the model, which a rename of
+the component leaves behind (:func:`orphan_problems`).
+"""
 
 from __future__ import annotations
 
@@ -9,10 +13,11 @@ import ast
 import os
 from pathlib import Path
 import re
-from typing import Iterator, Mapping
+from typing import Iterable, Iterator, Mapping
 
 from colcon_robmosys.errors import Diagnostic, Location
 from colcon_robmosys.generators.plan import PackagePlan, UserFile
+from colcon_robmosys.generators.render import render
 
 #: What a build leaves among the user's files: never part of the package.
 _LEFT_BY_TOOLS = ('__pycache__', '.pytest_cache')
@@ -159,3 +164,131 @@ def merge_conflicts(plan: PackagePlan,
                     f"the generated module '{generated}/{relative}' has this "
                     'name: rename the file, the package cannot hold both'))
     return problems
+
+
+#: The name of an implementation file, without its suffix: the class of a
+#: component, then ``_impl``.
+_IMPL_NAME = re.compile(r'(?P<cls>[A-Za-z_][A-Za-z0-9_]*)_impl')
+
+
+def orphan_problems(plan: PackagePlan) -> list[Diagnostic]:
+    """Return one error for the implementation files of no component of the model.
+
+    Renaming a component in the model leaves its implementation files behind:
+    C++ compiles them with the package, where they fail on the generated
+    header they include, which is gone; Python installs them and never
+    imports them. A fresh implementation file made beside them would hide the
+    user's code, so the error comes before anything is made or compiled.
+
+    A file counts if it lies where the component's own go, is named
+    ``<Name>_impl`` with a suffix of the language and holds what the
+    generator made of a component ``<Name>``: the class ``<Name>_impl`` on
+    ``<Name>`` (or, for a C++ source without its header, the definitions of
+    its functions). A file of the user's that merely ends in ``_impl`` is
+    theirs.
+
+    The error is at the component's name in the model, the line a rename
+    changed and the one to change back: the message names the files, and
+    the rename to make where the model evidently renamed the component.
+    """
+    impl = plan.implementation
+    if impl is None:
+        return []
+    folder = plan.model_dir / impl.folder
+    try:
+        names = sorted(os.listdir(folder))
+    except OSError:
+        return []
+    groups: dict[str, list[Path]] = {}
+    for name in names:
+        stem, suffix = os.path.splitext(name)
+        match = _IMPL_NAME.fullmatch(stem)
+        if suffix in impl.suffixes and match and match['cls'] != impl.component:
+            groups.setdefault(match['cls'], []).append(folder / name)
+    orphans = {cls: sorted(paths, key=lambda p: impl.suffixes.index(p.suffix))
+               for cls, paths in sorted(groups.items()) if _implements(cls, paths)}
+    if not orphans:
+        return []
+    paths = [p for group in orphans.values() for p in group]
+    it = 'them' if len(paths) > 1 else 'it'
+    named = ', '.join(f"'{cls}'" for cls in orphans)
+    if len(orphans) == 1:
+        message = f'the implementation of a component {named}, which the package ' \
+            f"'{plan.name}' does not have"
+    else:
+        message = f'the implementations of components {named}, which the package ' \
+            f"'{plan.name}' does not have"
+    message = f"{', '.join(str(p) for p in paths)}: {message}; "
+    new = impl.component
+    if len(orphans) == 1 and plan.user_files:
+        old, group = next(iter(orphans.items()))
+        suffixes = [p.suffix for p in group]
+        message += f"was '{old}' renamed to '{new}'? "
+        own = _own_files(plan)
+        if own is None:
+            message += f'move what you need of {_names(old, suffixes)} into ' \
+                f'{_names(new, impl.suffixes)}, then delete {it}'
+        else:
+            message += f'rename {_names(old, suffixes)} to {_names(new, suffixes)}, ' \
+                f"and '{old}' in {it} to '{new}'"
+            if own:
+                # made by a generation since the rename: nothing of the user's
+                message += f' (over {_names(new, own)}, made from the model since)'
+    elif plan.user_files:
+        message += f"the component of '{plan.name}' is '{new}': move what you need " \
+            f'of {it} into {_names(new, impl.suffixes)}, then delete {it}'
+    else:
+        message += f"its component '{new}' has no function of the user's: delete {it}"
+        if len(orphans) == 1:
+            message += f', or name the component {named} again'
+    return [Diagnostic(impl.location, message)]
+
+
+def _names(cls: str, suffixes: Iterable[str]) -> str:
+    """Name the files of a class in short: ``Cls_impl.hpp/.cpp``."""
+    return f'{cls}_impl' + '/'.join(suffixes)
+
+
+def _implements(cls: str, paths: list[Path]) -> bool:
+    """Tell whether files hold the implementation of a component ``cls``."""
+    suffixes = {p.suffix for p in paths}
+    for path in paths:
+        try:
+            text = path.read_text(encoding='utf-8')
+        except (OSError, UnicodeDecodeError):
+            continue  # not the code the generator made
+        name = re.escape(f'{cls}_impl')
+        if path.suffix == '.py':
+            found = re.search(rf'^class\s+{name}\s*\([^)]*\b{re.escape(cls)}\b', text,
+                              re.MULTILINE)
+        else:
+            code = _CPP_NOISE.sub(' ', text)
+            found = re.search(rf'\b(?:class|struct)\s+{name}\b[^;{{]*:[^;{{]*'
+                              rf'\b{re.escape(cls)}\b', code)
+            if found is None and path.suffix == '.cpp' and '.hpp' not in suffixes:
+                found = re.search(rf'\b{name}\s*::', code)
+        if found:
+            return True
+    return False
+
+
+def _own_files(plan: PackagePlan) -> list[str] | None:
+    """Return the component's implementation files that hold nothing of the user's.
+
+    :returns: the suffixes of those there as the generator makes them from the
+      model (by ``colcon robmosys-generate``, after a rename); None if any
+      holds the user's code
+    """
+    untouched = []
+    for user_file in plan.user_files:
+        path = plan.model_dir / user_file.source_path
+        try:
+            data = path.read_bytes()
+        except FileNotFoundError:
+            continue
+        except OSError:
+            return None
+        if data != render(user_file.template, user_file.context).encode('utf-8'):
+            return None
+        untouched.append(path.suffix)
+    return untouched

@@ -97,7 +97,7 @@ class RobmosysBuildTask(TaskExtensionPoint):
         fingerprint = result.fingerprint(pkg.name)
         try:
             plan = plan_package(result.workspace, pkg.name)
-            report = unchanged_package(source_dir, stamps, fingerprint) or \
+            report = unchanged_package(source_dir, stamps, fingerprint, plan) or \
                 generate_package(plan, source_dir, stamps=stamps,
                                  fingerprint=fingerprint, standalone=False)
         except RobmosysError as error:
