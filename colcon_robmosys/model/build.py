@@ -58,7 +58,8 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
                 tuple(self.at(ipath + ('parameters', n), key=True)
                       for n, _ in parameters),
                 bool(body.get('respawn', False)), body.get('timeout'),
-                body.get('host', ''), qos=self._qos_overrides(ipath, body)))
+                body.get('host', ''), qos=self._qos_overrides(ipath, body),
+                after_locations=self.at_each(ipath + ('after',), body.get('after', ()))))
         hosts = {i.host for i in instances if i.host}
         for instance in instances:
             if instance.name.startswith('on_') and instance.name[3:] in hosts:

@@ -5,7 +5,7 @@
 
 from __future__ import annotations
 
-from typing import Iterable
+from typing import Any, Iterable, Sequence
 
 from colcon_robmosys.errors import Diagnostic, Location
 from colcon_robmosys.model import names
@@ -38,6 +38,15 @@ class BuilderBase:
     def at(self, path: NodePath, *, key: bool = False) -> Location:
         """Return the location of a node."""
         return self.loaded.location(path, key=key)
+
+    def at_each(self, path: NodePath, listed: Sequence[Any]) -> tuple[Location, ...]:
+        """Return where each entry of the list at that path stands, in order.
+
+        A rule about one entry (an unknown name, a value out of range) points
+        at the entry, in block style (``- name`` on a line of its own) as in
+        flow style (``[a, name]``).
+        """
+        return tuple(self.at(path + (index,)) for index in range(len(listed)))
 
     def check_name(self, path: NodePath, kind: str, name: str, *,
                    key: bool = True) -> None:
@@ -74,9 +83,7 @@ class BuilderBase:
             depends=tuple(raw.get('depends', ())),
             model_file=str(self.loaded.path),
             location=self.at(path + ('package',)),
-            depends_locations=tuple(
-                self.at(path + ('depends', i))
-                for i in range(len(raw.get('depends', ())))),
+            depends_locations=self.at_each(path + ('depends',), raw.get('depends', ())),
             system_depends=tuple(raw.get('system_depends', ())),
         )
 
