@@ -58,6 +58,8 @@ class Instance:
     qos: tuple[QoSOverride, ...] = ()
     #: where each entry of ``after`` stands
     after_locations: tuple[Location, ...] = ()
+    #: where each element of each value of ``parameters`` stands (none for a scalar)
+    parameter_entry_locations: tuple[tuple[Location, ...], ...] = ()
 
     @property
     def node_name(self) -> str:
@@ -144,6 +146,8 @@ class System:
     #: values for every instance (the /** entry of the parameter file), and where each stands
     parameters: tuple[tuple[str, Any], ...] = ()
     parameter_locations: tuple[Location, ...] = ()
+    #: where each element of each of those values stands (none for a scalar)
+    parameter_entry_locations: tuple[tuple[Location, ...], ...] = ()
 
     @property
     def package(self) -> str:
