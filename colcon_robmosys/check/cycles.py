@@ -29,7 +29,9 @@ class CycleRules(CheckContext):
                 for cycle in _cycles(order):
                     instance = model.instance(cycle[0])
                     assert instance is not None
-                    self.error(instance.location, 'activation order cycle: ' +
+                    # the entry of its 'after' that the cycle goes on through
+                    where = instance.after_location(cycle[1 % len(cycle)])
+                    self.error(where, 'activation order cycle: ' +
                                ' -> '.join(cycle + [cycle[0]]))
 
     def _check_message_cycles(self, definition: ServiceDefinition) -> None:

@@ -10,10 +10,12 @@ user's code and run in the node only (on every change, and on configure).
 
 from __future__ import annotations
 
-from typing import Any, Iterable
+from functools import partial
+from typing import Any, Callable, Iterable
 
 from colcon_robmosys.errors import Diagnostic, Location
 from colcon_robmosys.mapping.parameters import NODE_PARAMETERS
+from colcon_robmosys.model.build_base import entry_at_fault
 from colcon_robmosys.model.parameters import parameter_value_problem, rule_problem
 from colcon_robmosys.model.types import Component, Instance, Parameter, System
 
@@ -29,14 +31,17 @@ def override_problems(instance: Instance, component: Component) -> list[Diagnost
     parameters = {p.name: p for p in component.parameters}
     locations = instance.parameter_locations or \
         (instance.location,) * len(instance.parameters)
-    for (name, value), location in zip(instance.parameters, locations):
+    entries = instance.parameter_entry_locations or ((),) * len(instance.parameters)
+    for (name, value), location, at in zip(instance.parameters, locations, entries):
         parameter = parameters.get(name)
         if parameter is None:
             if name in NODE_PARAMETERS:
-                problem = parameter_value_problem(NODE_PARAMETERS[name], value)
+                check = partial(parameter_value_problem, NODE_PARAMETERS[name])
+                problem = check(value)
                 if problem:
                     problems.append(Diagnostic(
-                        location, f"instance '{instance.name}', parameter '{name}': {problem}"))
+                        _at_entry(location, at, value, problem, check),
+                        f"instance '{instance.name}', parameter '{name}': {problem}"))
                 continue
             known = ', '.join(sorted(parameters)) or 'none'
             problems.append(Diagnostic(
@@ -46,8 +51,16 @@ def override_problems(instance: Instance, component: Component) -> list[Diagnost
         problem = _value_problem(parameter, value)
         if problem:
             problems.append(Diagnostic(
-                location, f"instance '{instance.name}', parameter '{name}': {problem}"))
+                _at_entry(location, at, value, problem, partial(_value_problem, parameter)),
+                f"instance '{instance.name}', parameter '{name}': {problem}"))
     return problems
+
+
+def _at_entry(location: Location, entries: tuple[Location, ...], value: Any, problem: str,
+              problem_of: Callable[[Any], str | None]) -> Location:
+    """Return where a value's problem stands: at its entry, if it is one entry's."""
+    index = entry_at_fault(value, problem, problem_of)
+    return location if index is None or index >= len(entries) else entries[index]
 
 
 def everywhere_problems(system: System, components: Iterable[tuple[Instance, Component]]
@@ -61,19 +74,22 @@ def everywhere_problems(system: System, components: Iterable[tuple[Instance, Com
     problems = []
     pairs = list(components)
     locations = system.parameter_locations or (system.location,) * len(system.parameters)
-    for (name, value), location in zip(system.parameters, locations):
+    entries = system.parameter_entry_locations or ((),) * len(system.parameters)
+    for (name, value), location, at in zip(system.parameters, locations, entries):
         types = {NODE_PARAMETERS[name]: 'every ROS 2 node'} if name in NODE_PARAMETERS else {}
-        problem = parameter_value_problem(NODE_PARAMETERS[name], value) if types else None
+        check: Callable[[Any], str | None] = partial(
+            parameter_value_problem, NODE_PARAMETERS.get(name, ''))
+        problem, whose = check(value) if types else None, ''
         for instance, component in pairs:
             parameter = next((p for p in component.parameters if p.name == name), None)
             if parameter is None or problem:
                 continue
             types.setdefault(parameter.type, f"instance '{instance.name}'")
-            problem = _value_problem(parameter, value)
-            if problem:
-                problem += f" (for instance '{instance.name}')"
+            check = partial(_value_problem, parameter)
+            problem, whose = check(value), f" (for instance '{instance.name}')"
         if problem:
-            problems.append(_everywhere(location, name, problem))
+            problems.append(_everywhere(_at_entry(location, at, value, problem, check),
+                                        name, problem + whose))
         elif len(types) > 1:
             # one value in the file: ROS 2 refuses an int for a double and the reverse
             problems.append(_everywhere(location, name, 'its types differ: ' + ', '.join(

@@ -58,14 +58,14 @@ class WiringRules(QoSRules):
             for after in instance.after:
                 other = system.instance(after)
                 if other is None:
-                    self.error(instance.location,
+                    self.error(instance.after_location(after),
                                f"instance '{instance.name}' is activated "
                                f"after unknown instance '{after}'")
                 elif not self._managed(other) or not self._managed(instance):
                     unmanaged = instance if not self._managed(instance) else other
                     why = '(activate: false)' if not unmanaged.activate else \
                         '(an external node that is not a lifecycle node)'
-                    self.error(instance.location,
+                    self.error(instance.after_location(after),
                                f"instance '{instance.name}' is activated "
                                f"after '{after}', but '{unmanaged.name}' is "
                                f'not activated by the system {why}')

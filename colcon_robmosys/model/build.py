@@ -5,8 +5,9 @@
 
 from __future__ import annotations
 
-from typing import Callable
+from typing import Any, Callable
 
+from colcon_robmosys.errors import Location
 from colcon_robmosys.model.build_base import MODEL_SECTIONS
 from colcon_robmosys.model.build_components import ComponentBuilder
 from colcon_robmosys.model.build_definitions import DefinitionBuilder
@@ -58,7 +59,9 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
                 tuple(self.at(ipath + ('parameters', n), key=True)
                       for n, _ in parameters),
                 bool(body.get('respawn', False)), body.get('timeout'),
-                body.get('host', ''), qos=self._qos_overrides(ipath, body)))
+                body.get('host', ''), qos=self._qos_overrides(ipath, body),
+                after_locations=self.at_each(ipath + ('after',), body.get('after', ())),
+                parameter_entry_locations=self._entries(ipath + ('parameters',), parameters)))
         hosts = {i.host for i in instances if i.host}
         for instance in instances:
             if instance.name.startswith('on_') and instance.name[3:] in hosts:
@@ -100,7 +103,14 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
         return System(info, name, tuple(instances), tuple(connections),
                       self.at(path + ('package',)),
                       raw.get('processes', 'per_instance'), tuple(subsystems), everywhere,
-                      tuple(self.at(path + ('parameters', n), key=True) for n, _ in everywhere))
+                      tuple(self.at(path + ('parameters', n), key=True) for n, _ in everywhere),
+                      self._entries(path + ('parameters',), everywhere))
+
+    def _entries(self, path: NodePath, values: tuple[tuple[str, Any], ...]
+                 ) -> tuple[tuple[Location, ...], ...]:
+        """Return where each element of each list value stands (none for a scalar)."""
+        return tuple(self.at_each(path + (name,), value) if isinstance(value, list) else ()
+                     for name, value in values)
 
     def _qos_overrides(self, path: NodePath, raw: RawData) -> tuple[QoSOverride, ...]:
         """Return the QoS an instance gives its ports (``qos: {port: {policy: value}}``)."""

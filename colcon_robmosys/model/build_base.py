@@ -5,7 +5,7 @@
 
 from __future__ import annotations
 
-from typing import Iterable
+from typing import Any, Callable, Iterable, Sequence
 
 from colcon_robmosys.errors import Diagnostic, Location
 from colcon_robmosys.model import names
@@ -38,6 +38,24 @@ class BuilderBase:
     def at(self, path: NodePath, *, key: bool = False) -> Location:
         """Return the location of a node."""
         return self.loaded.location(path, key=key)
+
+    def at_each(self, path: NodePath, listed: Sequence[Any]) -> tuple[Location, ...]:
+        """Return where each entry of the list at that path stands, in order.
+
+        A rule about one entry (an unknown name, a value out of range) points
+        at the entry, in block style (``- name`` on a line of its own) as in
+        flow style (``[a, name]``).
+        """
+        return tuple(self.at(path + (index,)) for index in range(len(listed)))
+
+    def error_in_list(self, path: NodePath, value: Any, problem: str, message: str,
+                      problem_of: Callable[[list[Any]], str | None]) -> None:
+        """Record a problem of a value at the entry it is about, if it is a list's.
+
+        :param message: what to say, ``problem`` and the thing it is about
+        """
+        index = entry_at_fault(value, problem, problem_of)
+        self.error(path if index is None else path + (index,), message)
 
     def check_name(self, path: NodePath, kind: str, name: str, *,
                    key: bool = True) -> None:
@@ -74,11 +92,25 @@ class BuilderBase:
             depends=tuple(raw.get('depends', ())),
             model_file=str(self.loaded.path),
             location=self.at(path + ('package',)),
-            depends_locations=tuple(
-                self.at(path + ('depends', i))
-                for i in range(len(raw.get('depends', ())))),
+            depends_locations=self.at_each(path + ('depends',), raw.get('depends', ())),
             system_depends=tuple(raw.get('system_depends', ())),
         )
+
+
+def entry_at_fault(values: Any, problem: str,
+                   problem_of: Callable[[list[Any]], str | None]) -> int | None:
+    """Return the index of the entry of a list value that a problem is about, if one is.
+
+    That is the first entry which, alone in a list, has the very same problem
+    (an element out of range, of the wrong kind, not one of those allowed);
+    a problem of the list as a whole (its length) is none of its entries'.
+
+    :param problem_of: says what is wrong with a list value, None if nothing
+    """
+    if not isinstance(values, list):
+        return None
+    return next((index for index, value in enumerate(values)
+                 if problem_of([value]) == problem), None)
 
 
 def choices(known: Iterable[str]) -> str:

@@ -6,6 +6,7 @@
 from __future__ import annotations
 
 import ast
+from functools import partial
 import textwrap
 from typing import Any
 
@@ -221,7 +222,9 @@ class ComponentBuilder(BuilderBase):
                 not parameter_value_problem(type_name, default):
             problem = rule_problem(parameter, default)
             if problem:
-                self.error(path + ('default',), f"parameter '{name}': default {problem}")
+                self.error_in_list(path + ('default',), default, problem,
+                                   f"parameter '{name}': default {problem}",
+                                   partial(rule_problem, parameter))
         return parameter
 
     def _one_of(self, path: NodePath, name: str, raw: RawData) -> tuple[Any, ...] | None:

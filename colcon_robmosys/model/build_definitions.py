@@ -5,6 +5,9 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+from functools import partial
+
 from colcon_robmosys.model import names
 from colcon_robmosys.model.build_base import BuilderBase
 from colcon_robmosys.model.fieldtypes import (
@@ -121,8 +124,11 @@ class DefinitionBuilder(BuilderBase):
             if field_type is not None and 'default' in spec:
                 problem = value_problem(field_type, default)
                 if problem:
-                    self.error(fpath + ('default',),
-                               f"field '{name}': {problem}")
+                    # an entry is judged in a list of any length of its type
+                    listed = replace(field_type, array='dynamic', array_size=None)
+                    self.error_in_list(fpath + ('default',), default, problem,
+                                       f"field '{name}': {problem}",
+                                       partial(value_problem, listed))
             self._comment(fpath + ('comment',), spec.get('comment', ''),
                           f"field '{name}'")
             if field_type is not None:

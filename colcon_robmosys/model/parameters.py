@@ -28,19 +28,33 @@ PARAMETER_ZERO = {
 def parameter_value_problem(type_name: str, value: Any) -> str | None:
     """Return why a value cannot be given to a parameter of the type."""
     if type_name == 'byte[]':
-        if not isinstance(value, list) or not all(
-                PARAMETER_KINDS['int'](v) and 0 <= v <= 255 for v in value):
+        if not isinstance(value, list):
             return f'{value!r} is not a list of bytes (integers 0..255)'
+        stray = next((v for v in value if not (
+            PARAMETER_KINDS['int'](v) and 0 <= v <= 255)), _NONE)
+        if stray is not _NONE:
+            return f'element {stray!r} is not a byte (an integer 0..255)'
         return None
     if type_name.endswith('[]'):
         check = PARAMETER_KINDS[type_name[:-2]]
-        if not isinstance(value, list) or not all(check(v) for v in value):
+        if not isinstance(value, list):
             return f'{value!r} is not a list of {type_name[:-2]} values'
+        stray = next((v for v in value if not check(v)), _NONE)
+        if stray is not _NONE:
+            # said of the element, so that it is reported where it stands
+            return f'element {stray!r} is not {_article(type_name[:-2])} value'
         return None
     if not PARAMETER_KINDS[type_name](value):
-        article = 'an' if type_name == 'int' else 'a'
-        return f'{value!r} is not {article} {type_name} value'
+        return f'{value!r} is not {_article(type_name)} value'
     return None
+
+
+#: what no element of a list is: a None of the list is an element
+_NONE = object()
+
+
+def _article(type_name: str) -> str:
+    return f"{'an' if type_name == 'int' else 'a'} {type_name}"
 
 
 def freeze_parameter_value(type_name: str, value: Any) -> Any:

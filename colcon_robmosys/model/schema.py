@@ -203,6 +203,10 @@ def structure_problems(loaded: LoadedFile
                 path = tuple(path) + (extra[0],)
             elif 'propertyNames' in leaf.absolute_schema_path:
                 path = tuple(path) + (leaf.instance,)
+            elif leaf.validator == 'uniqueItems':
+                repeated = schema_messages.repeated_item(leaf.instance)
+                if repeated is not None:
+                    path = tuple(path) + (repeated[1],)
             diagnostic = Diagnostic(loaded.location(path, key=about_key), message)
             # a name that breaks two rules (a pattern, a keyword) is said once
             if diagnostic not in said:

@@ -11,6 +11,7 @@ problem reads the same whichever of the two finds it.
 
 from __future__ import annotations
 
+import json
 from typing import Any
 
 from jsonschema.exceptions import ValidationError
@@ -62,6 +63,21 @@ def describe(value: Any) -> str:
     if isinstance(value, str):
         return names.shown(value)
     return repr(value)
+
+
+def repeated_item(items: list[Any]) -> tuple[int, int] | None:
+    """Return the indexes of the first entry a list repeats and of its repetition.
+
+    Entries are compared as JSON values (``true`` is not ``1``); None if
+    none is found so (``1`` and ``1.0``, which JSON Schema finds equal).
+    """
+    seen: dict[str, int] = {}
+    for index, item in enumerate(items):
+        text = json.dumps(item, sort_keys=True, default=str)
+        if text in seen:
+            return seen[text], index
+        seen[text] = index
+    return None
 
 
 def kinds(expected: Any) -> str:
@@ -182,6 +198,14 @@ def message(error: ValidationError, path: NodePath, root: Any) -> tuple[str, boo
         extra = sorted(set(error.instance) - set(allowed))
         hint = f" (expected one of: {', '.join(allowed)})" if allowed else ''
         return f"unknown key '{extra[0]}' in {_subject(path)}{hint}", True
+    if validator == 'uniqueItems':
+        # said at the entry that repeats another (schema.structure_problems)
+        repeated = repeated_item(error.instance)
+        if repeated is not None:
+            first, again = repeated
+            return _in_owner(path, root, f'{_subject(path)} lists '
+                             f'{describe(error.instance[again])} twice (items {first + 1} '
+                             f'and {again + 1})'), False
     if validator == 'required':
         missing = error.message.split("'")[1]
         return f"{_subject(path)} lacks the required key '{missing}'", False

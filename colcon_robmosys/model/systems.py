@@ -56,11 +56,22 @@ class Instance:
     node: str = ''
     #: the QoS the instance gives its ports in place of the component's
     qos: tuple[QoSOverride, ...] = ()
+    #: where each entry of ``after`` stands
+    after_locations: tuple[Location, ...] = ()
+    #: where each element of each value of ``parameters`` stands (none for a scalar)
+    parameter_entry_locations: tuple[tuple[Location, ...], ...] = ()
 
     @property
     def node_name(self) -> str:
         """Return the name of the instance's node (in its namespace)."""
         return self.node or self.name
+
+    def after_location(self, name: str) -> Location:
+        """Return where the instance names another in ``after``: the entry, else the instance."""
+        for entry, location in zip(self.after, self.after_locations):
+            if entry == name:
+                return location
+        return self.location
 
     def qos_of(self, port: str, qos: QoS) -> QoS:
         """Return the QoS a port of the instance has: the component's, overridden."""
@@ -135,6 +146,8 @@ class System:
     #: values for every instance (the /** entry of the parameter file), and where each stands
     parameters: tuple[tuple[str, Any], ...] = ()
     parameter_locations: tuple[Location, ...] = ()
+    #: where each element of each of those values stands (none for a scalar)
+    parameter_entry_locations: tuple[tuple[Location, ...], ...] = ()
 
     @property
     def package(self) -> str:
