@@ -160,11 +160,15 @@ DESCRIBED = textwrap.dedent("""
           rate: {type: int, default: 10}
           gain: {type: double, default: 1.0}
           label: {type: string, default: plain}
+          frames: {type: 'string[]', default: [a, b]}
 """)
 
 
 def test_a_described_node_keeps_the_values_it_runs_with(tmp_path: Path):
-    """An external component's instance sets its values as a generated one does."""
+    """An external component's instance sets its values as a generated one does.
+
+    Only values other than the defaults: an array at its default is none.
+    """
     (tmp_path / 'robmosys.yaml').write_text(DESCRIBED, encoding='utf-8')
     [component] = load_model_file(tmp_path / 'robmosys.yaml').components
     hostile = 'a: "b" # c\n- d'
@@ -173,8 +177,10 @@ def test_a_described_node_keeps_the_values_it_runs_with(tmp_path: Path):
              for name, parameters in (
                  ('moved', [GraphParameter('rate', 'int', 25),
                             GraphParameter('gain', 'double', 1.0),
-                            GraphParameter('label', 'string', hostile)]),
-                 ('as_modelled', [GraphParameter('rate', 'int', 10)]))]
+                            GraphParameter('label', 'string', hostile),
+                            GraphParameter('frames', 'string[]', ['a', 'b'])]),
+                 ('as_modelled', [GraphParameter('rate', 'int', 10),
+                                  GraphParameter('frames', 'string[]', ['a', 'b'])]))]
     processes = [NodeProcess('hand_sensors', 'sensor', 'python', name, '',
                              {'level': f'/{name}/level'}) for name in ('moved', 'as_modelled')]
     text = import_graph(nodes, 'snap_system', {}, {'hand_sensors/sensor': component},

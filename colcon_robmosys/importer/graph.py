@@ -31,6 +31,7 @@ from colcon_robmosys.importer.graph_yaml import Commented, dump
 from colcon_robmosys.importer.processes import NodeProcess, process_of
 from colcon_robmosys.model.components import Component
 from colcon_robmosys.model.names import identifier_problem
+from colcon_robmosys.model.parameters import freeze_parameter_value
 
 #: what a robmosys_runtime node announces (robmosys_runtime/announce.py)
 COMPONENT, PORTS, SYSTEM = 'robmosys.component', 'robmosys.ports', 'robmosys.system'
@@ -171,7 +172,9 @@ def _set_parameters(entry: dict[str, Any], node: GraphNode, component: Component
     values = {}
     for parameter in component.parameters:
         value = node.parameter(parameter.name)
-        if value is not None and value != parameter.default:
+        # the graph gives lists, the model keeps tuples: an array at its default is no value
+        if value is not None and \
+                freeze_parameter_value(parameter.type, value) != parameter.default:
             values[parameter.name] = value
     if values:
         entry['parameters'] = values
