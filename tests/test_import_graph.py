@@ -351,6 +351,45 @@ def test_a_node_nobody_modelled_becomes_an_external_component(test_workspace_bui
     _validate(env, tmp_path / 'ws')
 
 
+#: a node nobody spins: its parameter services never answer
+SILENT = textwrap.dedent("""
+    import time
+    import rclpy
+
+    rclpy.init()
+    node = rclpy.create_node('silent', namespace='/lab')
+    print('silent up', flush=True)
+    try:
+        time.sleep(300)
+    except KeyboardInterrupt:
+        pass
+""")
+
+
+def test_a_node_that_does_not_answer_costs_the_others_nothing(
+        test_workspace_built, tmp_path, domain_id):
+    """The parameters of the nodes that answer are read, whichever node does not."""
+    env = test_workspace_built.env(domain_id)
+    (tmp_path / 'probe.py').write_text(PROBE, encoding='utf-8')
+    (tmp_path / 'silent.py').write_text(SILENT, encoding='utf-8')
+    out = tmp_path / 'ws' / 'src'
+    out.mkdir(parents=True)
+    with background([sys.executable, str(tmp_path / 'probe.py'), 'Rate.', 'map'],
+                    env=env) as probe, \
+            background([sys.executable, str(tmp_path / 'silent.py')], env=env) as silent:
+        assert wait_until(lambda: 'probe up' in probe.output() and
+                          'silent up' in silent.output(), timeout=30), \
+            probe.output() + silent.output()
+        text = _import(env, out, '--system-package', 'lab_import', '--namespace', 'lab',
+                       '--license', 'BSD-3-Clause',
+                       '--maintainer', 'Lab Team <lab@example.com>')
+    components = {c['package']: c for c in yaml.safe_load(text)['components']}
+    assert components['graph_probe']['parameters']['rate']['default'] == 20, text
+    assert 'parameters' not in components['silent'], text
+    assert '# node /lab/silent: parameters: the node did not answer' in text
+    assert '# node /lab/graph_probe: parameters: the node did not answer' not in text
+
+
 def test_an_existing_model_is_never_replaced_and_no_graph_is_an_error(test_workspace_built,
                                                                       tmp_path):
     env = test_workspace_built.env(free_domain_id())
