@@ -130,6 +130,134 @@ def test_hand_written_nodes_refer_to_their_installed_description(test_workspace_
     _validate(env, tmp_path / 'ws')
 
 
+#: a hand-written node with parameters, as an ordinary ament package installs it
+TUNED_NODE = textwrap.dedent("""\
+    #!/usr/bin/env python3
+    \"\"\"A hand-written node with parameters, which a system sets.\"\"\"
+    import rclpy
+    from rclpy.executors import ExternalShutdownException
+    from std_msgs.msg import String
+
+    rclpy.init()
+    node = rclpy.create_node('tuned_node')
+    node.declare_parameter('rate', 10)
+    node.declare_parameter('gain', 1.0)
+    node.declare_parameter('label', 'plain')
+    node.declare_parameter('frames', ['a', 'b'])
+    node.create_publisher(String, 'level', 10)
+    node.get_logger().info('tuned up')
+    try:
+        rclpy.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()
+""")
+
+TUNED_PACKAGE = {
+    'CMakeLists.txt': textwrap.dedent("""\
+        cmake_minimum_required(VERSION 3.8)
+        project(hand_tuned NONE)
+        find_package(ament_cmake REQUIRED)
+        install(PROGRAMS tuned_node DESTINATION lib/${PROJECT_NAME})
+        ament_package()
+    """),
+    'package.xml': textwrap.dedent("""\
+        <?xml version="1.0"?>
+        <package format="3">
+          <name>hand_tuned</name>
+          <version>0.1.0</version>
+          <description>A hand-written node with parameters.</description>
+          <maintainer email="lab@example.com">Lab Team</maintainer>
+          <license>Apache-2.0</license>
+          <buildtool_depend>ament_cmake</buildtool_depend>
+          <exec_depend>rclpy</exec_depend>
+          <exec_depend>std_msgs</exec_depend>
+          <export><build_type>ament_cmake</build_type></export>
+        </package>
+    """),
+    'tuned_node': TUNED_NODE,
+}
+
+#: the values the system sets: all but gain, text that is YAML's and Python's syntax
+TUNED_VALUES = {'rate': 25, 'label': 'Rate: "quoted" # no comment {x: [y]} \\ \'done\'',
+                'frames': ['map', "- not: 'a list item'"]}
+TUNED_DEFAULTS = {'rate': 10, 'gain': 1.0, 'label': 'plain', 'frames': ['a', 'b']}
+
+
+def _tuned_system() -> str:
+    """Return a model that describes the hand-written node and runs it twice."""
+    return textwrap.dedent("""\
+        robmosys: 1
+        defaults:
+          license: Apache-2.0
+          maintainers: [{name: Lab Team, email: lab@example.com}]
+        components:
+          - name: Tuned
+            package: hand_tuned
+            language: python
+            external: {executable: tuned_node, lifecycle: false}
+            ports:
+              pLevel: {pattern: push, role: provided, type: std_msgs/msg/String, name: level}
+            parameters:
+              rate: {type: int, default: 10}
+              gain: {type: double, default: 1.0}
+              label: {type: string, default: plain}
+              frames: {type: 'string[]', default: [a, b]}
+        systems:
+          - package: tuned_system
+            instances:
+              tuned: {component: hand_tuned/tuned_node, parameters: %s}
+              untouched: {component: hand_tuned/tuned_node, namespace: spare}
+    """) % yaml.safe_dump(TUNED_VALUES, default_flow_style=True, width=2 ** 31).strip()
+
+
+def test_a_described_node_runs_with_its_values_in_a_system_built_from_the_import(
+        test_workspace_built, tmp_path, domain_id):
+    """The values a system gives a node that an external component describes are kept."""
+    from colcon_robmosys.devtools.system import LifecycleDriver
+    env = test_workspace_built.env(domain_id)
+    source = tmp_path / 'hand' / 'src'
+    for name, text in TUNED_PACKAGE.items():
+        (source / 'hand_tuned' / name).parent.mkdir(parents=True, exist_ok=True)
+        (source / 'hand_tuned' / name).write_text(text, encoding='utf-8')
+    (source / 'hand_tuned' / 'tuned_node').chmod(0o755)
+    (source / 'tuned_system').mkdir()
+    (source / 'tuned_system' / 'robmosys.yaml').write_text(_tuned_system(), encoding='utf-8')
+    result = ros_env.run([COLCON, 'build'], env=env, cwd=source.parent, timeout=600)
+    assert result.returncode == 0, result.stdout + result.stderr
+    hand_env = ros_env.workspace_env(source.parent / 'install', env)
+    out = tmp_path / 'imported' / 'src'
+    out.mkdir(parents=True)
+    names = sorted(TUNED_DEFAULTS)
+    with _bringup(source.parent / 'install', 'tuned_system', domain_id, hand_env) as bringup:
+        assert wait_until(lambda: bringup.output().count('tuned up') == 2, timeout=90), \
+            bringup.output()
+        # the driver is gone before the import: no node of the graph but the system's
+        with LifecycleDriver(domain_id) as driver:
+            assert driver.parameters('/tuned', names) == {**TUNED_DEFAULTS, **TUNED_VALUES}
+        text = _import(hand_env, out, '--system-package', 'tuned_import')
+    model = yaml.safe_load(text)
+    assert 'components' not in model, text  # the installed description is referred to
+    assert model['systems'][0]['instances'] == {
+        'tuned': {'component': 'hand_tuned/tuned_node', 'parameters': TUNED_VALUES},
+        'untouched': {'component': 'hand_tuned/tuned_node', 'namespace': '/spare'}}, text
+    _validate(hand_env, tmp_path / 'imported')
+
+    # what matters: the system built from the import runs the node with those values
+    result = ros_env.run([COLCON, 'build'], env=hand_env, cwd=out.parent, timeout=600)
+    assert result.returncode == 0, result.stdout + result.stderr
+    install = out.parent / 'install'
+    imported_env = ros_env.workspace_env(install, hand_env)
+    with _bringup(install, 'tuned_import', domain_id, imported_env) as bringup, \
+            LifecycleDriver(domain_id) as driver:
+        assert wait_until(lambda: bringup.output().count('tuned up') == 2, timeout=90), \
+            bringup.output()
+        assert driver.parameters('/tuned', names) == {**TUNED_DEFAULTS, **TUNED_VALUES}
+        assert driver.parameters('/spare/untouched', names) == TUNED_DEFAULTS
+
+
 #: a node nobody modelled: QoS that is not the default, parameters with descriptors
 PROBE = textwrap.dedent("""
     import sys
@@ -221,6 +349,45 @@ def test_a_node_nobody_modelled_becomes_an_external_component(test_workspace_bui
     assert system['connections'] == [{'to': 'graph_probe.commands', 'topic': '/commands'},
                                      {'to': 'graph_probe.plan', 'topic': '/planner/plan'}]
     _validate(env, tmp_path / 'ws')
+
+
+#: a node nobody spins: its parameter services never answer
+SILENT = textwrap.dedent("""
+    import time
+    import rclpy
+
+    rclpy.init()
+    node = rclpy.create_node('silent', namespace='/lab')
+    print('silent up', flush=True)
+    try:
+        time.sleep(300)
+    except KeyboardInterrupt:
+        pass
+""")
+
+
+def test_a_node_that_does_not_answer_costs_the_others_nothing(
+        test_workspace_built, tmp_path, domain_id):
+    """The parameters of the nodes that answer are read, whichever node does not."""
+    env = test_workspace_built.env(domain_id)
+    (tmp_path / 'probe.py').write_text(PROBE, encoding='utf-8')
+    (tmp_path / 'silent.py').write_text(SILENT, encoding='utf-8')
+    out = tmp_path / 'ws' / 'src'
+    out.mkdir(parents=True)
+    with background([sys.executable, str(tmp_path / 'probe.py'), 'Rate.', 'map'],
+                    env=env) as probe, \
+            background([sys.executable, str(tmp_path / 'silent.py')], env=env) as silent:
+        assert wait_until(lambda: 'probe up' in probe.output() and
+                          'silent up' in silent.output(), timeout=30), \
+            probe.output() + silent.output()
+        text = _import(env, out, '--system-package', 'lab_import', '--namespace', 'lab',
+                       '--license', 'BSD-3-Clause',
+                       '--maintainer', 'Lab Team <lab@example.com>')
+    components = {c['package']: c for c in yaml.safe_load(text)['components']}
+    assert components['graph_probe']['parameters']['rate']['default'] == 20, text
+    assert 'parameters' not in components['silent'], text
+    assert '# node /lab/silent: parameters: the node did not answer' in text
+    assert '# node /lab/graph_probe: parameters: the node did not answer' not in text
 
 
 def test_an_existing_model_is_never_replaced_and_no_graph_is_an_error(test_workspace_built,

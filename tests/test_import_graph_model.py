@@ -143,3 +143,52 @@ def test_hostile_text_reads_back_and_comments_stay_comments():
     comments = [line for line in text.splitlines() if line.lstrip().startswith('#')]
     assert comments[0] == '# first second'
     assert '# above # not mine' in text
+
+
+DESCRIBED = textwrap.dedent("""
+    robmosys: 1
+    components:
+      - name: Sensor
+        package: hand_sensors
+        language: python
+        license: MIT
+        maintainers: [{name: A, email: a@example.com}]
+        external: {executable: sensor, lifecycle: false}
+        ports:
+          pLevel: {pattern: push, role: provided, type: std_msgs/msg/String, name: level}
+        parameters:
+          rate: {type: int, default: 10}
+          gain: {type: double, default: 1.0}
+          label: {type: string, default: plain}
+          frames: {type: 'string[]', default: [a, b]}
+""")
+
+
+def test_a_described_node_keeps_the_values_it_runs_with(tmp_path: Path):
+    """An external component's instance sets its values as a generated one does.
+
+    Only values other than the defaults: an array at its default is none.
+    """
+    (tmp_path / 'robmosys.yaml').write_text(DESCRIBED, encoding='utf-8')
+    [component] = load_model_file(tmp_path / 'robmosys.yaml').components
+    hostile = 'a: "b" # c\n- d'
+    nodes = [GraphNode(name, '/', [Endpoint('publisher', f'/{name}/level',
+                                            'std_msgs/msg/String')], parameters)
+             for name, parameters in (
+                 ('moved', [GraphParameter('rate', 'int', 25),
+                            GraphParameter('gain', 'double', 1.0),
+                            GraphParameter('label', 'string', hostile),
+                            GraphParameter('frames', 'string[]', ['a', 'b'])]),
+                 ('as_modelled', [GraphParameter('rate', 'int', 10),
+                                  GraphParameter('frames', 'string[]', ['a', 'b'])]))]
+    processes = [NodeProcess('hand_sensors', 'sensor', 'python', name, '',
+                             {'level': f'/{name}/level'}) for name in ('moved', 'as_modelled')]
+    text = import_graph(nodes, 'snap_system', {}, {'hand_sensors/sensor': component},
+                        processes, lambda package: None, header='Test.')
+    model = yaml.safe_load(text)
+    assert 'components' not in model, text  # referred to, not made again
+    assert model['systems'][0]['instances'] == {
+        'as_modelled': {'component': 'hand_sensors/sensor'},
+        'moved': {'component': 'hand_sensors/sensor',
+                  'parameters': {'rate': 25, 'label': hostile}},
+    }, text

@@ -209,52 +209,69 @@ def _qos(profile: Any) -> dict[str, Any]:
     return qos
 
 
-def _calls(node: Any, executor: Any, srv_type: Any, requests: dict[str, Any],
-           end: float) -> dict[str, Any]:
-    """Call a service of many nodes at once; return service name -> response."""
-    clients = {name: node.create_client(srv_type, name) for name in requests}
-    futures: dict[str, Any] = {}
-    try:
-        while len(futures) < len(clients) and time.monotonic() < end:
-            for name, client in clients.items():
-                if name not in futures and client.service_is_ready():
-                    futures[name] = client.call_async(requests[name])
-            executor.spin_once(timeout_sec=0.05)
-        while not all(f.done() for f in futures.values()) and time.monotonic() < end:
-            executor.spin_once(timeout_sec=0.05)
-        return {name: future.result() for name, future in futures.items() if future.done()}
-    finally:
-        for client in clients.values():
-            node.destroy_client(client)
+#: the services that tell a node's parameters, asked one after the other
+_PARAMETER_SERVICES = ('list_parameters', 'describe_parameters', 'get_parameters')
 
 
 def _read_parameters(node: Any, executor: Any, nodes: list[GraphNode], timeout: float) -> None:
-    """Read the parameters of every node: their names, descriptors and values."""
+    """Read the parameters of every node: their names, descriptors and values.
+
+    Each node is asked its next question as soon as it answers the one before:
+    a node that does not answer (a busy executor, a node nobody spins) costs
+    the others nothing, where questions asked of all nodes at once, in three
+    rounds, left every node's parameters unread behind it.
+    """
     from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters
+    types = dict(zip(_PARAMETER_SERVICES, (ListParameters, DescribeParameters, GetParameters)))
     end = time.monotonic() + timeout
-    listed = _calls(node, executor, ListParameters, {
-        f'{n.fqn}/list_parameters': ListParameters.Request() for n in nodes}, end)
-    names: dict[str, list[str]] = {}
+    answers: dict[str, list[Any]] = {n.fqn: [] for n in nodes}
+    #: fqn -> the client of its current question, and the future of its answer
+    asking: dict[str, tuple[Any, Any]] = {}
+
+    def request(fqn: str, service: str) -> Any:
+        if service == 'list_parameters':
+            return ListParameters.Request()
+        return types[service].Request(names=_names(answers[fqn][0]))
+    try:
+        while time.monotonic() < end and any(len(a) < 3 for a in answers.values()):
+            for fqn, answered in answers.items():
+                client, future = asking.get(fqn, (None, None))
+                if future is not None:
+                    if not future.done():
+                        continue
+                    answer = future.result()
+                    answered.append(answer)
+                    if answer is None:
+                        answered[:] = [None] * 3  # no answer to build the next question on
+                    node.destroy_client(client)
+                    del asking[fqn]
+                    client = None
+                if len(answered) == 3:
+                    continue
+                service = _PARAMETER_SERVICES[len(answered)]
+                if client is None:
+                    client = node.create_client(types[service], f'{fqn}/{service}')
+                    asking[fqn] = (client, None)
+                if client.service_is_ready():
+                    asking[fqn] = (client, client.call_async(request(fqn, service)))
+            executor.spin_once(timeout_sec=0.05)
+    finally:
+        for client, _ in asking.values():
+            node.destroy_client(client)
     for graph_node in nodes:
-        response = listed.get(f'{graph_node.fqn}/list_parameters')
-        if response is not None:
-            names[graph_node.fqn] = sorted(
-                n for n in response.result.names if n not in _AUTOMATIC_PARAMETERS and
-                not n.startswith('qos_overrides.'))
-    described = _calls(node, executor, DescribeParameters, {
-        f'{fqn}/describe_parameters': DescribeParameters.Request(names=listed_names)
-        for fqn, listed_names in names.items()}, end)
-    values = _calls(node, executor, GetParameters, {
-        f'{fqn}/get_parameters': GetParameters.Request(names=listed_names)
-        for fqn, listed_names in names.items()}, end)
-    for graph_node in nodes:
-        descriptors = described.get(f'{graph_node.fqn}/describe_parameters')
-        got = values.get(f'{graph_node.fqn}/get_parameters')
-        if descriptors is None or got is None:
+        answered = answers[graph_node.fqn]
+        if len(answered) < 3 or None in answered:
             continue  # it did not answer: parameters stay None
+        listed, descriptors, values = answered
         graph_node.parameters = [
             _parameter(name, descriptor, value) for name, descriptor, value in zip(
-                names[graph_node.fqn], descriptors.descriptors, got.values)]
+                _names(listed), descriptors.descriptors, values.values)]
+
+
+def _names(listed: Any) -> list[str]:
+    """Return the names of a node's parameters that are its own."""
+    return sorted(n for n in listed.result.names if n not in _AUTOMATIC_PARAMETERS and
+                  not n.startswith('qos_overrides.'))
 
 
 def _parameter(name: str, descriptor: Any, value: Any) -> GraphParameter:
