@@ -27,9 +27,7 @@ from pathlib import Path
 import signal
 import subprocess
 import sys
-import threading
 import time
-from typing import Any
 
 from colcon_robmosys.devtools import ros_env
 
@@ -104,71 +102,60 @@ def run_system(system: str, seconds: float) -> int:
     This runs in the environment of the install (see :func:`run`), so that the
     system's message packages and robmosys_runtime import here.
     """
-    from ament_index_python.packages import get_package_prefix, get_package_share_directory
-    import rclpy
-    from rclpy.executors import SingleThreadedExecutor
-    from robmosys_runtime.smoke import interface, Probe, TOPIC_ENTITIES, wait_until_up
+    from ament_index_python.packages import (
+        get_package_prefix, get_package_share_directory, PackageNotFoundError)
+    from robmosys_runtime.smoke import (
+        interface, Probe, spinning_node, stop, TOPIC_ENTITIES, wait_until_up)
 
-    with open(Path(get_package_share_directory(system)) / 'bringup.json',
-              encoding='utf-8') as stream:
+    try:
+        share = Path(get_package_share_directory(system))
+    except PackageNotFoundError:
+        print(f'demo: error: the install has no package {system!r}', file=sys.stderr)
+        return 1
+    if not (share / 'bringup.json').is_file():
+        print(f'demo: error: {system!r} is not a system package (it has no bringup.json)',
+              file=sys.stderr)
+        return 1
+    with open(share / 'bringup.json', encoding='utf-8') as stream:
         description = json.load(stream)
     bringup = Path(get_package_prefix(system)) / 'lib' / system / 'bringup'
     say(f'ros2 run {system} bringup   (ROS_DOMAIN_ID={os.environ["ROS_DOMAIN_ID"]}, '
         f'DDS on loopback; this runs {bringup.relative_to(REPO)})')
     topics = {c['name']: c['type'] for c in description['connections']
               if c['entity'] in TOPIC_ENTITIES}
-    context = rclpy.Context()
-    rclpy.init(context=context)
-    node = rclpy.create_node('demo_topic_counter', context=context)
-    executor = SingleThreadedExecutor(context=context)
-    executor.add_node(node)
-    spinner = threading.Thread(target=executor.spin, daemon=True)
-    spinner.start()
-    manager = subprocess.Popen([str(bringup)], stdin=subprocess.DEVNULL, start_new_session=True)
     problems: list[str] = []
-    try:
-        probe = Probe(node)
-        for topic, type_name in topics.items():
-            probe.listen(topic, interface(type_name))
-        not_up = wait_until_up(probe, description, manager, BRING_UP_TIMEOUT)
-        if not_up:
-            problems.append(not_up)
-        else:
-            say(f'the system is up: running for {seconds:g} s')
-            before = {topic: probe.received(topic) for topic in topics}
-            time.sleep(seconds)
+    with spinning_node('demo_topic_counter') as node:
+        manager = subprocess.Popen([str(bringup)], stdin=subprocess.DEVNULL,
+                                   start_new_session=True)
+        try:
+            probe = Probe(node)
             for topic, type_name in topics.items():
-                count = probe.received(topic) - before[topic]
-                say(f'{count} messages received in {seconds:g} s on {topic} ({type_name})')
-                if probe.received(topic) == 0:
-                    problems.append(f'no message on {topic}')
-    finally:
-        problems += bring_down(manager)
-        executor.shutdown()
-        spinner.join(10)
-        node.destroy_node()
-        rclpy.try_shutdown(context=context)
+                probe.listen(topic, interface(type_name))
+            not_up = wait_until_up(probe, description, manager, BRING_UP_TIMEOUT)
+            if not_up:
+                problems.append(not_up)
+            else:
+                say(f'the system is up: running for {seconds:g} s')
+                before = {topic: probe.received(topic) for topic in topics}
+                time.sleep(seconds)
+                for topic, type_name in topics.items():
+                    count = probe.received(topic) - before[topic]
+                    say(f'{count} messages received in {seconds:g} s on {topic} '
+                        f'({type_name})')
+                    if probe.received(topic) == 0:
+                        problems.append(f'no message on {topic}')
+        finally:
+            if manager.poll() is None:
+                say('Ctrl-C (SIGINT) to bringup: the system comes down')
+            else:
+                problems.append(f'bringup exited early with code {manager.returncode}')
+            problems += stop(manager, BRING_DOWN_TIMEOUT)
     for problem in problems:
         print(f'demo: error: {problem}', file=sys.stderr, flush=True)
     if not problems:
         say(f'{system} came up, carried data on each of its {len(topics)} connected topics '
             'and came down cleanly')
     return 1 if problems else 0
-
-
-def bring_down(manager: subprocess.Popen[Any]) -> list[str]:
-    """Bring the system down as an operator does, with Ctrl-C; return the problems."""
-    if manager.poll() is not None:
-        return [f'bringup exited early with code {manager.returncode}']
-    say('Ctrl-C (SIGINT) to bringup: the system comes down')
-    os.killpg(manager.pid, signal.SIGINT)
-    try:
-        code = manager.wait(BRING_DOWN_TIMEOUT)
-    except subprocess.TimeoutExpired:
-        os.killpg(manager.pid, signal.SIGKILL)
-        manager.wait()
-        return [f'bringup did not end within {BRING_DOWN_TIMEOUT:g} s of SIGINT']
-    return [f'bringup exited with code {code} after SIGINT'] if code else []
 
 
 def main() -> int:

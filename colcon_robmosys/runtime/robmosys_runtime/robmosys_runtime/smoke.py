@@ -19,6 +19,7 @@ checks that the manager exits 0.
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import json
 import os
@@ -28,7 +29,7 @@ import sys
 import tempfile
 import threading
 import time
-from typing import Any, Callable, Dict, List, Optional
+from typing import Any, Callable, Dict, Iterator, List, Optional
 
 from ament_index_python.packages import get_package_prefix, get_package_share_directory
 import rclpy
@@ -161,27 +162,36 @@ def run(package: str, *, timeout: float = 30.0, bring_up_timeout: float = 120.0,
              *(bringup_args or [])],
             stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
             start_new_session=True)
-        context = rclpy.Context()
-        rclpy.init(context=context)
-        node = Node(f'{package}_smoke_test', context=context)
-        executor = MultiThreadedExecutor(num_threads=4, context=context)
-        executor.add_node(node)
-        spinner = threading.Thread(target=executor.spin, daemon=True)
-        spinner.start()
         try:
-            problems += _check(node, description, manager, timeout, bring_up_timeout)
+            with spinning_node(f'{package}_smoke_test') as node:
+                problems += _check(node, description, manager, timeout, bring_up_timeout)
         finally:
-            problems += _stop(manager)
-            executor.shutdown()
-            # the spinning thread ends before the node and the context go
-            spinner.join(10)
-            node.destroy_node()
-            rclpy.try_shutdown(context=context)
+            problems += stop(manager)
             if problems:
                 log.seek(0)
                 problems.append('what the system printed:\n' +
                                 log.read().decode('utf-8', 'replace'))
     return problems
+
+
+@contextlib.contextmanager
+def spinning_node(name: str) -> Iterator[Node]:
+    """Yield a node of a context of its own, spun in a thread, until the block ends."""
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    node = Node(name, context=context)
+    executor = MultiThreadedExecutor(num_threads=4, context=context)
+    executor.add_node(node)
+    spinner = threading.Thread(target=executor.spin, daemon=True)
+    spinner.start()
+    try:
+        yield node
+    finally:
+        executor.shutdown()
+        # the spinning thread ends before the node and the context go
+        spinner.join(10)
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
 
 
 def _check(node: Node, description: Dict[str, Any], manager: 'subprocess.Popen[bytes]',
@@ -215,7 +225,7 @@ def _check(node: Node, description: Dict[str, Any], manager: 'subprocess.Popen[b
     return problems
 
 
-def _stop(manager: 'subprocess.Popen[bytes]', timeout: float = 60.0) -> List[str]:
+def stop(manager: 'subprocess.Popen[Any]', timeout: float = 60.0) -> List[str]:
     """Bring the system down as an operator does (SIGINT); return the problems."""
     if manager.poll() is None:
         os.killpg(manager.pid, signal.SIGINT)
