@@ -248,6 +248,12 @@ def run_pair(cmds: dict[str, list[str]], base_env: dict[str, str], burst: int,
 
         for role in ('listener', 'talker'):
             transition(role, 'configure')
+        # the window starts once the two have found each other, not at a fixed time: on
+        # a loaded machine discovery took longer than the warm-up, and the listener's
+        # first message (which starts its warm-up) came after the talker stopped
+        if not wait_until(lambda: driver.node.count_publishers(TOPIC) >= 1 and
+                          driver.node.count_subscribers(TOPIC) >= 1, timeout=60):
+            raise RuntimeError(f'the talker and the listener did not meet on {TOPIC}')
         for role in ('listener', 'talker'):
             transition(role, 'activate')
         time.sleep(warmup)
