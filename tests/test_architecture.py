@@ -157,3 +157,54 @@ def test_templates_are_small():
         if lines > MAX_TEMPLATE_LINES:
             big[name] = lines
     assert big == {}
+
+
+#: Where a module may ask which language a component is: the language
+#: backends; and the model, where it checks the Python code a model embeds
+#: as it builds the model (the model layer imports no backend).
+LANGUAGE_BACKENDS = PACKAGE / 'mapping' / 'backends'
+LANGUAGE_MODULES = (PACKAGE / 'model' / 'build_components.py',)
+#: The names of the languages, as the model spells them.
+LANGUAGE_NAMES = frozenset({'cpp', 'python'})
+
+
+#: Suffixes of the languages' files: a switch on them stands for a language.
+LANGUAGE_SUFFIXES = frozenset({'.cpp', '.h', '.hpp', '.py'})
+
+
+def _language_tests(tree: ast.AST) -> list[int]:
+    """Return the lines where code asks for a particular language.
+
+    ``Language.CPP``, a comparison with ``'cpp'`` or ``'python'``, or with a
+    suffix of a language's files.
+    """
+    lines = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Attribute) and node.attr in ('CPP', 'PYTHON') and \
+                isinstance(node.value, ast.Name) and node.value.id == 'Language':
+            lines.append(node.lineno)
+        elif isinstance(node, ast.Compare) and any(
+                isinstance(o, ast.Constant) and o.value in LANGUAGE_NAMES | LANGUAGE_SUFFIXES
+                or isinstance(o, ast.Tuple) and any(
+                    isinstance(e, ast.Constant) and e.value in LANGUAGE_SUFFIXES
+                    for e in o.elts)
+                for o in [node.left, *node.comparators]):
+            lines.append(node.lineno)
+    return sorted(set(lines))
+
+
+def test_only_the_backends_ask_for_a_language():
+    """A language is one backend (mapping/backends/): nothing else asks for one."""
+    asking = [f'{path.relative_to(REPO)}:{line}' for path in _sources(PACKAGE)
+              if RUNTIME_PACKAGE not in path.parents and
+              LANGUAGE_BACKENDS not in path.parents and path not in LANGUAGE_MODULES
+              for line in _language_tests(ast.parse(path.read_text(encoding='utf-8')))]
+    assert asking == []
+
+
+def test_the_language_test_finds_what_it_looks_for():
+    tree = ast.parse('if component.language is Language.CPP:\n    pass\n'
+                     "if outline.language == 'python':\n    pass\n"
+                     "x = 'cpp' if compiled else 'python'\n"
+                     "if path.suffix in ('.hpp', '.h'):\n    pass\n")
+    assert _language_tests(tree) == [1, 3, 6]

@@ -3,8 +3,9 @@
 
 """Generate the files of a package, and keep the user's files safe.
 
-Each generator is a table of template -> output path (``cpp``, ``python``,
-``interfaces``, ``system``) fed by a plan of :mod:`colcon_robmosys.mapping`;
+Each generator is a table of template -> output path (``interfaces``,
+``system``, and a component's from its language's backend, see
+:mod:`colcon_robmosys.mapping.backends`) fed by a plan of :mod:`colcon_robmosys.mapping`;
 everything goes through one renderer and one writer.
 """
 
@@ -15,13 +16,12 @@ import os
 from pathlib import Path
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
-from colcon_robmosys.generators.cpp import cpp_package
+from colcon_robmosys.generators.component import component_package
 from colcon_robmosys.generators.interfaces import interfaces_package
 from colcon_robmosys.generators.manifest import (
     digest, MANIFEST, Manifest, read_manifest, unchanged_since,
     write_manifest)
 from colcon_robmosys.generators.plan import FileSpec, PackagePlan, UserFile
-from colcon_robmosys.generators.python import python_package
 from colcon_robmosys.generators.render import render
 from colcon_robmosys.generators.stamp import StampStore
 from colcon_robmosys.generators.system import system_package
@@ -30,14 +30,12 @@ from colcon_robmosys.generators.usercode import (
 from colcon_robmosys.generators.writer import (
     create_user_file, GENERATED_MARKER, is_generated, read_current,
     remove_generated, remove_leftovers, sync_folders, write_generated)
+from colcon_robmosys.mapping.backends import backend
 from colcon_robmosys.mapping.component import plan_component
-from colcon_robmosys.mapping.cpp import spell_cpp
 from colcon_robmosys.mapping.interfaces import plan_interfaces
-from colcon_robmosys.mapping.python import spell_python
 from colcon_robmosys.mapping.system import plan_system
 from colcon_robmosys.mapping.userfiles import user_folders
-from colcon_robmosys.model.types import (
-    Component, Language, ServiceDefinition, Workspace)
+from colcon_robmosys.model.types import Component, ServiceDefinition, Workspace
 
 __all__ = ['create_missing_user_files', 'FileSpec', 'generate_package',
            'GenerationReport', 'MANIFEST', 'PackagePlan', 'plan_package',
@@ -72,14 +70,9 @@ def plan_package(workspace: Workspace, package: str) -> PackagePlan:
     if isinstance(model, ServiceDefinition):
         plan = interfaces_package(plan_interfaces(model), model_dir)
     elif isinstance(model, Component):
-        component = plan_component(model)
-        folders = user_folders(model, workspace)
-        if model.language is Language.PYTHON:
-            plan = python_package(spell_python(model, component, folders), model_dir,
-                                  model.location)
-        else:
-            plan = cpp_package(spell_cpp(model, component, folders), model_dir,
-                               model.location)
+        language = backend(model.language)
+        context = language.spell(model, plan_component(model), user_folders(model, workspace))
+        plan = component_package(language, context, model_dir, model.location)
     else:
         plan = system_package(plan_system(model, workspace), model_dir)
     # the model, installed with the package: workspaces built on this one use it

@@ -7,9 +7,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from colcon_robmosys.generators.plan import (
-    files_of, FileSpec, PackagePlan, Row)
+from colcon_robmosys.generators.plan import files_of, FileSpec, PackagePlan
 from colcon_robmosys.mapping.interfaces import InterfacePackage
+from colcon_robmosys.mapping.tables import Row
 
 #: the template of every interface file (at the path the plan gives)
 INTERFACE_TEMPLATE = 'interfaces/interface.jinja'

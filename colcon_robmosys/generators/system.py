@@ -7,10 +7,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from colcon_robmosys.generators.plan import (
-    files_of, FileSpec, PackagePlan, Row)
+from colcon_robmosys.generators.plan import files_of, FileSpec, PackagePlan
 from colcon_robmosys.mapping.launch import PARAMS_FILE
 from colcon_robmosys.mapping.system import SystemPackage
+from colcon_robmosys.mapping.tables import Row
 
 #: template -> output path, once per launch file (all instances, then each)
 LAUNCH_FILES = (

@@ -9,7 +9,6 @@ the component leaves behind (:func:`orphan_problems`).
 
 from __future__ import annotations
 
-import ast
 import os
 from pathlib import Path
 import re
@@ -45,76 +44,17 @@ def check_user_file(user_file: UserFile, path: Path, skeleton: Path | str = ''
     except (OSError, UnicodeDecodeError) as exc:
         return [Diagnostic(Location(str(path)),
                            f'cannot read the implementation file: {exc}')], False
-    if path.suffix in ('.hpp', '.h'):
-        problems = _cpp_header_problems(user_file, path, text, skeleton)
-    elif path.suffix == '.py':
-        try:
-            tree = ast.parse(text, filename=str(path))
-        except SyntaxError as exc:
-            return [Diagnostic(Location(str(path), exc.lineno or 0,
-                                        exc.offset or 0),
-                               f'Python syntax error: {exc.msg}')], False
-        problems = _python_problems(user_file, path, tree, skeleton)
-    else:
-        problems = []
-    return problems, bool(problems)
+    if user_file.check is None:
+        return [], False
+    return user_file.check(path, text, user_file.required_class,
+                           user_file.required_functions,
+                           _skeleton_hint(user_file, skeleton))
 
 
 def user_file_problems(user_file: UserFile, path: Path,
                        skeleton: Path | str = '') -> list[Diagnostic]:
     """Return what the user's code lacks of what the model asks of it."""
     return check_user_file(user_file, path, skeleton)[0]
-
-
-def _python_problems(user_file: UserFile, path: Path, tree: ast.Module,
-                     skeleton_path: Path | str) -> list[Diagnostic]:
-    classes = [n for n in tree.body if isinstance(n, ast.ClassDef) and
-               n.name == user_file.required_class]
-    skeleton = _skeleton_hint(user_file, skeleton_path)
-    if not classes:
-        return [Diagnostic(Location(str(path), 1, 1),
-                           f"no class '{user_file.required_class}' in the "
-                           f'implementation file; {skeleton}')]
-    cls = classes[0]
-    defined = {n.name for n in cls.body
-               if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef))}
-    return [Diagnostic(Location(str(path), cls.lineno, cls.col_offset + 1),
-                       f"class '{cls.name}' lacks the function '{name}' of "
-                       f'the model; {skeleton}')
-            for name in user_file.required_functions if name not in defined]
-
-
-def _cpp_header_problems(user_file: UserFile, path: Path, text: str,
-                         skeleton_path: Path | str) -> list[Diagnostic]:
-    """Check that a C++ header declares the class and functions of the model.
-
-    A compiler would say so too, but only in the middle of the build and in
-    terms of pure virtual functions; this names the function of the model.
-    Comments, strings and preprocessor lines are blanked out (keeping line
-    and column) so that only declarations count.
-    """
-    code = _CPP_NOISE.sub(lambda m: re.sub(r'[^\n]', ' ', m.group(0)), text)
-    skeleton = _skeleton_hint(user_file, skeleton_path)
-    cls = re.search(rf'\b(?:class|struct)\s+{re.escape(user_file.required_class)}\b'
-                    r'[^;{]*\{', code)
-    if cls is None:
-        return [Diagnostic(Location(str(path), 1, 1),
-                           f"no class '{user_file.required_class}' in the "
-                           f'implementation file; {skeleton}')]
-    line = code.count('\n', 0, cls.start()) + 1
-    column = cls.start() - code.rfind('\n', 0, cls.start())
-    body = code[cls.end():]
-    return [Diagnostic(Location(str(path), line, column),
-                       f"class '{user_file.required_class}' lacks the function "
-                       f"'{name}' of the model; {skeleton}")
-            for name in user_file.required_functions
-            if not re.search(rf'\b{re.escape(name)}\s*\(', body)]
-
-
-#: C++ comments, string and character literals, and preprocessor lines.
-_CPP_NOISE = re.compile(
-    r'//[^\n]*|/\*.*?\*/|"(?:\\.|[^"\\\n])*"|\'(?:\\.|[^\'\\\n])*\'|^[ \t]*#[^\n]*',
-    re.DOTALL | re.MULTILINE)
 
 
 def _user_files_below(folder: Path) -> Iterator[Path]:
@@ -206,7 +146,7 @@ def orphan_problems(plan: PackagePlan) -> list[Diagnostic]:
         if suffix in impl.suffixes and match and match['cls'] != impl.component:
             groups.setdefault(match['cls'], []).append(folder / name)
     orphans = {cls: sorted(paths, key=lambda p: impl.suffixes.index(p.suffix))
-               for cls, paths in sorted(groups.items()) if _implements(cls, paths)}
+               for cls, paths in sorted(groups.items()) if impl.implements(cls, paths)}
     if not orphans:
         return []
     paths = [p for group in orphans.values() for p in group]
@@ -247,29 +187,6 @@ def orphan_problems(plan: PackagePlan) -> list[Diagnostic]:
 def _names(cls: str, suffixes: Iterable[str]) -> str:
     """Name the files of a class in short: ``Cls_impl.hpp/.cpp``."""
     return f'{cls}_impl' + '/'.join(suffixes)
-
-
-def _implements(cls: str, paths: list[Path]) -> bool:
-    """Tell whether files hold the implementation of a component ``cls``."""
-    suffixes = {p.suffix for p in paths}
-    for path in paths:
-        try:
-            text = path.read_text(encoding='utf-8')
-        except (OSError, UnicodeDecodeError):
-            continue  # not the code the generator made
-        name = re.escape(f'{cls}_impl')
-        if path.suffix == '.py':
-            found = re.search(rf'^class\s+{name}\s*\([^)]*\b{re.escape(cls)}\b', text,
-                              re.MULTILINE)
-        else:
-            code = _CPP_NOISE.sub(' ', text)
-            found = re.search(rf'\b(?:class|struct)\s+{name}\b[^;{{]*:[^;{{]*'
-                              rf'\b{re.escape(cls)}\b', code)
-            if found is None and path.suffix == '.cpp' and '.hpp' not in suffixes:
-                found = re.search(rf'\b{name}\s*::', code)
-        if found:
-            return True
-    return False
 
 
 def _own_files(plan: PackagePlan) -> list[str] | None:

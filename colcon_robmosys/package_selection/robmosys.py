@@ -8,11 +8,8 @@ from colcon_core.logging import colcon_logger
 from colcon_core.package_selection import PackageSelectionExtensionPoint
 from colcon_core.plugin_system import satisfies_version
 
-from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
+from colcon_robmosys.mapping.backends import PREFIX_PACKAGES
 from colcon_robmosys.package_discovery.robmosys import checked_result
-
-#: What a C++ component needs from a prefix and PyPI has not.
-CPP_PREFIX_PACKAGES = CPP_CLIENT_PACKAGES + ('rclcpp_action', )
 
 logger = colcon_logger.getChild(__name__)
 
@@ -22,11 +19,13 @@ _BUILDING_VERBS = ('build', 'test')
 
 
 class RobmosysPackageSelection(PackageSelectionExtensionPoint):
-    """Skip C++ components where no prefix provides rclcpp, unless their model has errors.
+    """Skip components that need what no prefix provides, unless their model has errors.
 
-    rclcpp is not on PyPI: a workspace of models still builds everything else
-    on a machine without it, and colcon says which packages it skipped and
-    why, instead of reporting them as finished.
+    What a component needs of the ROS 2 prefix is its language backend's
+    (mapping/backends/): rclcpp for C++. rclcpp is not on PyPI: a
+    workspace of models still builds everything else on a machine without
+    it, and colcon says which packages it skipped and why, instead of
+    reporting them as finished.
     """
 
     # after the selection arguments of the user (colcon-package-selection
@@ -48,7 +47,7 @@ class RobmosysPackageSelection(PackageSelectionExtensionPoint):
             if not decorator.selected or pkg.type != 'robmosys.component':
                 continue
             depends = pkg.get_dependencies(categories=('build', ))
-            needs = [name for name in CPP_PREFIX_PACKAGES
+            needs = [name for name in PREFIX_PACKAGES
                      if name in depends and name not in in_workspace]
             missing = missing_prefix_packages(needs)
             if missing and _has_errors(pkg):

@@ -7,7 +7,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from colcon_robmosys.mapping.cpp_context import CppParameter, CppParameterGroup, CppRange
+from colcon_robmosys.mapping.backends.cpp.context import (
+    CppParameter, CppParameterGroup, CppRange)
 from colcon_robmosys.mapping.literals import cpp_str, split_literal
 from colcon_robmosys.mapping.parameters import group_class_names, parameter_groups
 from colcon_robmosys.model.types import Parameter

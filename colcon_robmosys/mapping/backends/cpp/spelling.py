@@ -3,10 +3,6 @@
 
 """How C++ spells a component plan: types, signatures, QoS and includes.
 
-The layout is the reference's (Papyrus for Robotics): ``src-gen/<pkg>/`` holds
-the generated class and main, ``src-skel/<pkg>/`` the regenerated skeleton of
-the implementation, ``src/<pkg>/<Component>_impl.{hpp,cpp}`` (next to
-the model) the user's implementation, which derives from the generated class.
 Headers are ``.hpp`` where the reference has ``.h``: ament_uncrustify reads
 ``.h`` files as C.
 
@@ -21,17 +17,17 @@ import re
 import textwrap
 from typing import Iterable
 
-from colcon_robmosys.mapping.common import banner_of, package_xml, unique
+from colcon_robmosys.mapping.backends.cpp.context import (
+    CppActivity, CppComponent, CppFunction, CppIncludes, CppPort)
+from colcon_robmosys.mapping.backends.cpp.parameters import (
+    cpp_parameter, cpp_parameter_groups, PARAMETER_TYPES)
+from colcon_robmosys.mapping.common import banner_of, package_xml, RUNTIME_PACKAGE, unique
 from colcon_robmosys.mapping.component import (
     ActivityPlan, ComponentPlan, FunctionPlan, PortPlan)
-from colcon_robmosys.mapping.cpp_context import (
-    CppActivity, CppComponent, CppFunction, CppIncludes, CppPort)
-from colcon_robmosys.mapping.cpp_parameters import (
-    cpp_parameter, cpp_parameter_groups, PARAMETER_TYPES)
 from colcon_robmosys.mapping.parameters import parameter_page
 from colcon_robmosys.mapping.portkinds import Delivery, Entity, port_kind, PortKind, Returns
 from colcon_robmosys.mapping.qos import resolve_qos
-from colcon_robmosys.mapping.userfiles import user_folders, UserFolders
+from colcon_robmosys.mapping.userfiles import UserFolders
 from colcon_robmosys.model.types import Component, InterfaceRef, QoS
 
 #: The ROS 2 packages a C++ component needs in the prefix to build at all.
@@ -88,9 +84,6 @@ RUNTIME_HEADERS = {
     Entity.EVENT_SERVER: 'robmosys_runtime/event_server.hpp',
     Entity.EVENT_CLIENT: 'robmosys_runtime/event_client.hpp',
 }
-
-#: the runtime package: the lifecycle bookkeeping and the ports' classes
-RUNTIME_PACKAGE = 'robmosys_runtime'
 
 
 def header_name(ref: InterfaceRef) -> str:
@@ -212,11 +205,10 @@ def _includes(plan: ComponentPlan, has_rules: bool) -> CppIncludes:
 
 
 def spell_cpp(component: Component, plan: ComponentPlan,
-              folders: UserFolders | None = None) -> CppComponent:
+              folders: UserFolders) -> CppComponent:
     """Spell the plan of a C++ component.
 
-    :param folders: where the user's files are (by default, as for the only
-      component of its file)
+    :param folders: where the user's files are
     """
     package, cls = plan.package, plan.cls
     banner = banner_of(component)
@@ -259,5 +251,5 @@ def spell_cpp(component: Component, plan: ComponentPlan,
             depend=build_depends,
             test=['ament_cmake_cpplint', 'ament_cmake_uncrustify',
                   'ament_cmake_gtest', 'ament_cmake_pytest']),
-        folders=folders or user_folders(component),
+        folders=folders,
         parameter_page=parameter_page(component, banner))

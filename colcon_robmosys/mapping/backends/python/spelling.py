@@ -13,17 +13,17 @@ from __future__ import annotations
 import textwrap
 from typing import Any, Mapping
 
-from colcon_robmosys.mapping.common import banner_of, package_xml
+from colcon_robmosys.mapping.backends.python.context import (
+    PyActivity, PyComponent, PyFunction, PyParameter, PyParameterGroup, PyPort, PyRange,
+    PyTransition)
+from colcon_robmosys.mapping.common import banner_of, package_xml, RUNTIME_PACKAGE
 from colcon_robmosys.mapping.component import (
     ComponentPlan, FunctionPlan, PortPlan)
 from colcon_robmosys.mapping.parameters import (
     group_class_names, parameter_groups, parameter_page)
 from colcon_robmosys.mapping.portkinds import Entity, Returns
-from colcon_robmosys.mapping.python_context import (
-    PyActivity, PyComponent, PyFunction, PyParameter, PyParameterGroup, PyPort, PyRange,
-    PyTransition)
 from colcon_robmosys.mapping.qos import resolve_qos
-from colcon_robmosys.mapping.userfiles import user_folders, UserFolders
+from colcon_robmosys.mapping.userfiles import UserFolders
 from colcon_robmosys.model.types import Component, InterfaceRef, Parameter, QoS
 
 _QOS_NAMES = frozenset({'DurabilityPolicy', 'HistoryPolicy', 'LivelinessPolicy',
@@ -50,7 +50,7 @@ IMPORTS: dict[Entity, dict[str, frozenset[str]]] = {
 }
 
 #: packages the code of every component needs at run time
-EXEC_DEPENDS = ('rclpy', 'lifecycle_msgs', 'rcl_interfaces', 'robmosys_runtime')
+EXEC_DEPENDS = ('rclpy', 'lifecycle_msgs', 'rcl_interfaces', RUNTIME_PACKAGE)
 
 #: what a function gives back -> its annotation
 RETURN_TYPES = {
@@ -292,11 +292,10 @@ def _function(function: FunctionPlan,
 
 
 def spell_python(component: Component, plan: ComponentPlan,
-                 folders: UserFolders | None = None) -> PyComponent:
+                 folders: UserFolders) -> PyComponent:
     """Spell the plan of a Python component.
 
-    :param folders: where the user's files are (by default, as for the only
-      component of its file)
+    :param folders: where the user's files are
     """
     package, cls = plan.package, plan.cls
     type_names = _python_names([p.type for p in plan.ports])
@@ -342,5 +341,5 @@ def spell_python(component: Component, plan: ComponentPlan,
             banner, component.info,
             buildtool=['ament_cmake', 'ament_cmake_python'],
             exec_=exec_depends, test=['ament_cmake_pytest']),
-        folders=folders or user_folders(component),
+        folders=folders,
         parameter_page=parameter_page(component, banner))
