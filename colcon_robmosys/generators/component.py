@@ -6,15 +6,15 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
 from colcon_robmosys.errors import Location
 from colcon_robmosys.generators.plan import (
     files_of, implementation_of, PackagePlan, user_files_of)
 from colcon_robmosys.mapping.backends import Backend
+from colcon_robmosys.mapping.context import ComponentContext
 
 
-def component_package(backend: Backend, context: Any, model_dir: Path,
+def component_package(backend: Backend, context: ComponentContext, model_dir: Path,
                       location: Location) -> PackagePlan:
     """Return the files of a component package, spelled by its language's backend."""
     facts = backend.package(context)

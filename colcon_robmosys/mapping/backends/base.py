@@ -16,9 +16,10 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Iterable, Mapping
+from typing import Iterable, Mapping
 
 from colcon_robmosys.mapping.component import ComponentPlan
+from colcon_robmosys.mapping.context import ComponentContext
 from colcon_robmosys.mapping.portkinds import PortKind
 from colcon_robmosys.mapping.tables import Row, UserRow
 from colcon_robmosys.mapping.userfiles import UserFolders
@@ -66,11 +67,15 @@ class Backend(ABC):
 
     @abstractmethod
     def spell(self, component: Component, plan: ComponentPlan,
-              folders: UserFolders) -> Any:
-        """Return the context of the templates of a component (a frozen dataclass)."""
+              folders: UserFolders) -> ComponentContext:
+        """Return the context of the templates of a component.
+
+        Its class derives from the shared one, built by
+        :func:`~colcon_robmosys.mapping.context.component_context`.
+        """
 
     @abstractmethod
-    def package(self, context: Any) -> PackageFacts:
+    def package(self, context: ComponentContext) -> PackageFacts:
         """Return what the package of a spelled component depends on."""
 
     def prefix_dependencies(self, kinds: Iterable[PortKind]) -> tuple[str, ...]:

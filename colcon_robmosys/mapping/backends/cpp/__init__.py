@@ -12,7 +12,7 @@ model) the user's implementation, which derives from the generated class.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Iterable
 
 from colcon_robmosys.mapping.backends.base import Backend, NodeStart, PackageFacts
 from colcon_robmosys.mapping.backends.cpp import usercode
@@ -20,6 +20,7 @@ from colcon_robmosys.mapping.backends.cpp.context import CppComponent
 from colcon_robmosys.mapping.backends.cpp.spelling import (
     CPP_CLIENT_PACKAGES, rclcpp_packages, spell_cpp)
 from colcon_robmosys.mapping.component import ComponentPlan
+from colcon_robmosys.mapping.context import ComponentContext
 from colcon_robmosys.mapping.portkinds import PortKind
 from colcon_robmosys.mapping.tables import Row, UserRow
 from colcon_robmosys.mapping.userfiles import UserFolders
@@ -68,8 +69,9 @@ class CppBackend(Backend):
         """Return the context of the templates of a component."""
         return spell_cpp(component, plan, folders)
 
-    def package(self, context: Any) -> PackageFacts:
+    def package(self, context: ComponentContext) -> PackageFacts:
         """Return what the package depends on."""
+        assert isinstance(context, CppComponent)
         return PackageFacts(
             build_depends=context.find_packages, exec_depends=context.find_packages,
             prefix_requirements=context.prefix_requirements)

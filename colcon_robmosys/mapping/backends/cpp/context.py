@@ -1,16 +1,13 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-"""The context of the C++ templates: frozen dataclasses, filled by mapping/cpp.py."""
+"""The context of the C++ templates: the spelling of a component, filled by spelling.py."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Mapping
 
-from colcon_robmosys.mapping.common import Banner, PackageXml
-from colcon_robmosys.mapping.parameters import ParameterPage
-from colcon_robmosys.mapping.userfiles import UserFolders
+from colcon_robmosys.mapping.context import ComponentContext, SpelledParameter
 
 
 @dataclass(frozen=True)
@@ -45,33 +42,18 @@ class CppFunction:
     description: str
 
 
-@dataclass(frozen=True)
-class CppRange:
-    """The range of a numeric parameter's descriptor."""
+@dataclass(frozen=True, kw_only=True)
+class CppParameter(SpelledParameter):
+    """A parameter: its declaration with a descriptor, and its accessor.
 
-    field: str
-    cls: str
-    start: str
-    end: str
-    step: str
+    Its rule is the statements that fill its ParameterRule.
+    """
 
-
-@dataclass(frozen=True)
-class CppParameter:
-    """A parameter: its declaration with a descriptor, and its accessor."""
-
-    name: str
     cpp_type: str
     accessor: str
     default_lines: tuple[str, ...]
     description_lines: tuple[str, ...]
-    doc: str
     read_only: str
-    range: CppRange | None
-    #: the last part of its name: the accessor of its group
-    attr: str = ''
-    #: the statements that fill its ParameterRule, if it has rules
-    rule_lines: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -110,14 +92,10 @@ class CppIncludes:
     ros: tuple[str, ...]
 
 
-@dataclass(frozen=True)
-class CppComponent:
-    """Everything the templates of a C++ component print."""
+@dataclass(frozen=True, kw_only=True)
+class CppComponent(ComponentContext):
+    """Everything the templates of a C++ component print: the shared part, and this."""
 
-    banner: Banner
-    package: str
-    cls: str
-    node_cls: str
     node_header: str
     description: str
     includes: CppIncludes
@@ -132,35 +110,8 @@ class CppComponent:
     parameters: tuple[CppParameter, ...]
     #: the groups of Parameters, a subgroup first; then Parameters itself
     parameter_groups: tuple[CppParameterGroup, ...]
-    #: transition -> functions run on it (the transitions that run any)
-    lifecycle: Mapping[str, tuple[str, ...]]
-    threads: int
-    has_impl: bool
     find_packages: tuple[str, ...]
     link_targets: tuple[str, ...]
     interface_packages: tuple[str, ...]
     sources: tuple[str, ...]
     prefix_requirements: tuple[str, ...]
-    package_xml: PackageXml
-    #: where the user's files are, next to the model
-    folders: UserFolders
-    #: the page of its parameters (doc/parameters.md), if it has any
-    parameter_page: ParameterPage | None = None
-    #: the skeleton or the user's file (impl templates)
-    skeleton: bool = False
-
-    @property
-    def rules(self) -> tuple[CppParameter, ...]:
-        """Return the parameters with rules beyond their descriptors."""
-        return tuple(p for p in self.parameters if p.rule_lines)
-
-    @property
-    def validates(self) -> bool:
-        """Tell whether functions of the component validate values (on configure too)."""
-        return any(line.startswith('rule.validate') for p in self.rules for line in p.rule_lines)
-
-    @property
-    def impl_paths(self) -> tuple[str, str]:
-        """Return where the user's header and source live, next to the model."""
-        stem = f'src/{self.package}/{self.cls}_impl'
-        return f'{stem}.hpp', f'{stem}.cpp'

@@ -7,8 +7,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from colcon_robmosys.mapping.backends.cpp.context import (
-    CppParameter, CppParameterGroup, CppRange)
+from colcon_robmosys.mapping.backends.cpp.context import CppParameter, CppParameterGroup
+from colcon_robmosys.mapping.context import ParameterRange
 from colcon_robmosys.mapping.literals import cpp_str, split_literal
 from colcon_robmosys.mapping.parameters import group_class_names, parameter_groups
 from colcon_robmosys.model.types import Parameter
@@ -67,7 +67,7 @@ def _default_lines(parameter: Parameter, ctype: str) -> list[str]:
             f'{cpp_value(parameter.default, parameter.type)};']
 
 
-def _range(parameter: Parameter) -> CppRange | None:
+def _range(parameter: Parameter) -> ParameterRange | None:
     if parameter.range is None:
         return None
     integer = parameter.type == 'int'
@@ -75,7 +75,7 @@ def _range(parameter: Parameter) -> CppRange | None:
     def cast(value: float) -> str:
         return f'INT64_C({int(value)})' if integer else repr(float(value))
 
-    return CppRange(
+    return ParameterRange(
         'integer_range' if integer else 'floating_point_range',
         'rcl_interfaces::msg::IntegerRange' if integer
         else 'rcl_interfaces::msg::FloatingPointRange',
@@ -94,7 +94,7 @@ def cpp_parameter(parameter: Parameter, cls: str) -> CppParameter:
         doc=parameter.description or f'The parameter {parameter.name}.',
         read_only='true' if parameter.read_only else 'false',
         range=_range(parameter), attr=parameter.path[-1],
-        rule_lines=tuple(_rule_lines(parameter, cls, ctype)))
+        rule=tuple(_rule_lines(parameter, cls, ctype)))
 
 
 def _rule_lines(parameter: Parameter, cls: str, ctype: str) -> list[str]:

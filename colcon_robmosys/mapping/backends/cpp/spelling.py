@@ -21,10 +21,10 @@ from colcon_robmosys.mapping.backends.cpp.context import (
     CppActivity, CppComponent, CppFunction, CppIncludes, CppPort)
 from colcon_robmosys.mapping.backends.cpp.parameters import (
     cpp_parameter, cpp_parameter_groups, PARAMETER_TYPES)
-from colcon_robmosys.mapping.common import banner_of, package_xml, RUNTIME_PACKAGE, unique
+from colcon_robmosys.mapping.common import RUNTIME_PACKAGE, unique
 from colcon_robmosys.mapping.component import (
     ActivityPlan, ComponentPlan, FunctionPlan, PortPlan)
-from colcon_robmosys.mapping.parameters import parameter_page
+from colcon_robmosys.mapping.context import component_context
 from colcon_robmosys.mapping.portkinds import Delivery, Entity, port_kind, PortKind, Returns
 from colcon_robmosys.mapping.qos import resolve_qos
 from colcon_robmosys.mapping.userfiles import UserFolders
@@ -211,7 +211,6 @@ def spell_cpp(component: Component, plan: ComponentPlan,
     :param folders: where the user's files are
     """
     package, cls = plan.package, plan.cls
-    banner = banner_of(component)
     ports = tuple(_port(p) for p in plan.ports)
     functions = tuple(_function(cls, f) for f in plan.functions)
     activities = tuple(_activity(a) for a in plan.activities)
@@ -221,11 +220,14 @@ def spell_cpp(component: Component, plan: ComponentPlan,
     interfaces = unique(('rcl_interfaces', 'lifecycle_msgs') + plan.depends)
     build_depends = client_packages + (RUNTIME_PACKAGE,) + interfaces
     src = f'src-gen/{package}'
-    return CppComponent(
-        banner=banner, package=package, cls=cls, node_cls=plan.node_cls,
+    return component_context(
+        CppComponent, component, plan, folders,
+        xml={'buildtool': ['ament_cmake'], 'depend': build_depends,
+             'test': ['ament_cmake_cpplint', 'ament_cmake_uncrustify',
+                      'ament_cmake_gtest', 'ament_cmake_pytest']},
         node_header=f'{package}/{plan.node_cls}.hpp',
         description=plan.description or f'The component {cls}.',
-        includes=_includes(plan, any(p.rule_lines for p in parameters)), ports=ports,
+        includes=_includes(plan, any(p.rule for p in parameters)), ports=ports,
         publishers=tuple(p for p in ports if p.entity == Entity.PUBLISHER),
         action_servers=tuple(p for p in ports
                              if p.entity == Entity.ACTION_SERVER),
@@ -235,8 +237,6 @@ def spell_cpp(component: Component, plan: ComponentPlan,
         user_functions=tuple(f for f in functions if f.code is None),
         parameters=parameters,
         parameter_groups=cpp_parameter_groups(plan.parameters, parameters),
-        lifecycle={t: f for t, f in plan.lifecycle if f}, threads=plan.threads,
-        has_impl=plan.has_impl,
         find_packages=build_depends,
         link_targets=tuple(f'{p}::{p}' for p in ('rclcpp', 'rclcpp_lifecycle')) +
         (('rclcpp_action::rclcpp_action',) if plan.uses_actions else ()) +
@@ -245,11 +245,4 @@ def spell_cpp(component: Component, plan: ComponentPlan,
         # the user's sources are compiled where they live (the template
         # finds them): only the generated ones here
         sources=(f'{src}/{cls}.cpp',),
-        prefix_requirements=client_packages,
-        package_xml=package_xml(
-            banner, component.info, buildtool=['ament_cmake'],
-            depend=build_depends,
-            test=['ament_cmake_cpplint', 'ament_cmake_uncrustify',
-                  'ament_cmake_gtest', 'ament_cmake_pytest']),
-        folders=folders,
-        parameter_page=parameter_page(component, banner))
+        prefix_requirements=client_packages)

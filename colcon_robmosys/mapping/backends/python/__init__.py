@@ -12,13 +12,13 @@ generated ones in one Python package.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
 from colcon_robmosys.mapping.backends.base import Backend, NodeStart, PackageFacts
 from colcon_robmosys.mapping.backends.python import usercode
 from colcon_robmosys.mapping.backends.python.context import PyComponent
 from colcon_robmosys.mapping.backends.python.spelling import spell_python
 from colcon_robmosys.mapping.component import ComponentPlan
+from colcon_robmosys.mapping.context import ComponentContext
 from colcon_robmosys.mapping.tables import Row, UserRow
 from colcon_robmosys.mapping.userfiles import UserFolders
 from colcon_robmosys.model.types import Component, Language
@@ -60,8 +60,9 @@ class PythonBackend(Backend):
         """Return the context of the templates of a component."""
         return spell_python(component, plan, folders)
 
-    def package(self, context: Any) -> PackageFacts:
+    def package(self, context: ComponentContext) -> PackageFacts:
         """Return what the package depends on."""
+        assert isinstance(context, PyComponent)
         return PackageFacts(
             build_depends=context.depends, exec_depends=context.exec_depends,
             # the user's modules join the generated ones in one Python package

@@ -1,16 +1,14 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-"""The context of the Python templates: frozen dataclasses, filled by mapping/python.py."""
+"""The context of the Python templates: the spelling of a component, filled by spelling.py."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Any
 
-from colcon_robmosys.mapping.common import Banner, PackageXml
-from colcon_robmosys.mapping.parameters import ParameterPage
-from colcon_robmosys.mapping.userfiles import UserFolders
+from colcon_robmosys.mapping.context import ComponentContext, SpelledParameter
 
 
 @dataclass(frozen=True)
@@ -45,33 +43,19 @@ class PyFunction:
     description: str
 
 
-@dataclass(frozen=True)
-class PyRange:
-    """The range of a numeric parameter's descriptor."""
+@dataclass(frozen=True, kw_only=True)
+class PyParameter(SpelledParameter):
+    """A parameter: its declaration with a descriptor, and its accessor.
 
-    field: str
-    cls: str
-    start: str
-    end: str
-    step: str
+    Its rule is the arguments of its ParameterRule (one_of, size, validate,
+    on_change).
+    """
 
-
-@dataclass(frozen=True)
-class PyParameter:
-    """A parameter: its declaration with a descriptor, and its accessor."""
-
-    name: str
     py_type: str
     ros_type: str
     default: Any
     description: str
-    doc: str
     read_only: bool
-    range: PyRange | None
-    #: the last part of its name: the attribute of its group
-    attr: str = ''
-    #: the arguments of its ParameterRule (one_of, size, validate, on_change), if any
-    rule: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -106,14 +90,10 @@ class PyTransition:
     run: str
 
 
-@dataclass(frozen=True)
-class PyComponent:
-    """Everything the templates of a Python component print."""
+@dataclass(frozen=True, kw_only=True)
+class PyComponent(ComponentContext):
+    """Everything the templates of a Python component print: the shared part, and this."""
 
-    banner: Banner
-    package: str
-    cls: str
-    node_cls: str
     node_module: str
     description: str
     node_imports: tuple[str, ...]
@@ -128,36 +108,13 @@ class PyComponent:
     parameters: tuple[PyParameter, ...]
     #: subgroups first, the class of the node's own parameters last
     parameter_groups: tuple[PyParameterGroup, ...]
-    lifecycle: tuple[PyTransition, ...]
-    has_impl: bool
-    #: the executor threads its process needs at least (ComponentPlan.threads)
-    threads: int
+    #: the lifecycle transitions that run functions, and how
+    transitions: tuple[PyTransition, ...]
     #: packages it builds against (its interfaces), and runs with
     depends: tuple[str, ...]
     exec_depends: tuple[str, ...]
-    package_xml: PackageXml
-    #: where the user's files are, next to the model
-    folders: UserFolders
-    #: the page of its parameters (doc/parameters.md), if it has any
-    parameter_page: ParameterPage | None = None
-    skeleton: bool = False
-
-    @property
-    def rules(self) -> tuple[PyParameter, ...]:
-        """Return the parameters with rules beyond their descriptors."""
-        return tuple(p for p in self.parameters if p.rule)
-
-    @property
-    def validates(self) -> bool:
-        """Tell whether functions of the component validate values (on configure too)."""
-        return any(a.startswith('validate=') for p in self.parameters for a in p.rule)
 
     @property
     def port_names(self) -> list[str]:
         """Return the names of the ports (attributes of the node)."""
         return [p.name for p in self.ports]
-
-    @property
-    def impl_path(self) -> str:
-        """Return where the user's implementation lives, next to the model."""
-        return f'src/{self.package}/{self.cls}_impl.py'

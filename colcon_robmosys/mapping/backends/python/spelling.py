@@ -14,13 +14,12 @@ import textwrap
 from typing import Any, Mapping
 
 from colcon_robmosys.mapping.backends.python.context import (
-    PyActivity, PyComponent, PyFunction, PyParameter, PyParameterGroup, PyPort, PyRange,
-    PyTransition)
-from colcon_robmosys.mapping.common import banner_of, package_xml, RUNTIME_PACKAGE
+    PyActivity, PyComponent, PyFunction, PyParameter, PyParameterGroup, PyPort, PyTransition)
+from colcon_robmosys.mapping.common import RUNTIME_PACKAGE
 from colcon_robmosys.mapping.component import (
     ComponentPlan, FunctionPlan, PortPlan)
-from colcon_robmosys.mapping.parameters import (
-    group_class_names, parameter_groups, parameter_page)
+from colcon_robmosys.mapping.context import component_context, ParameterRange
+from colcon_robmosys.mapping.parameters import group_class_names, parameter_groups
 from colcon_robmosys.mapping.portkinds import Entity, Returns
 from colcon_robmosys.mapping.qos import resolve_qos
 from colcon_robmosys.mapping.userfiles import UserFolders
@@ -220,12 +219,12 @@ def _port(port: PortPlan, type_name: str) -> PyPort:
         functions=port.functions, method=RUNTIME_METHODS[port.kind.entity], run=run)
 
 
-def _range(parameter: Parameter) -> PyRange | None:
+def _range(parameter: Parameter) -> ParameterRange | None:
     if parameter.range is None:
         return None
     integer = parameter.type == 'int'
     cast = int if integer else float
-    return PyRange(
+    return ParameterRange(
         'integer_range' if integer else 'floating_point_range',
         'IntegerRange' if integer else 'FloatingPointRange',
         repr(cast(parameter.range.start)), repr(cast(parameter.range.end)),
@@ -313,10 +312,11 @@ def spell_python(component: Component, plan: ComponentPlan,
             _add(impl_modules, f'{ref.package}.{ref.kind.value}',
                  {f'{ref.name}{alias}'})
     exec_depends = EXEC_DEPENDS + plan.depends
-    banner = banner_of(component)
     spelled = {p.name: _parameter(p) for p in plan.parameters}
-    return PyComponent(
-        banner=banner, package=package, cls=cls, node_cls=plan.node_cls,
+    return component_context(
+        PyComponent, component, plan, folders,
+        xml={'buildtool': ['ament_cmake', 'ament_cmake_python'], 'exec_': exec_depends,
+             'test': ['ament_cmake_pytest']},
         node_module=node_module,
         description=_class_doc(cls, plan.description),
         node_imports=_node_imports(type_names, plan, uses_duration),
@@ -333,13 +333,6 @@ def spell_python(component: Component, plan: ComponentPlan,
         functions=functions, user_functions=user_functions,
         parameters=tuple(spelled.values()),
         parameter_groups=_groups(plan.parameters, cls, spelled),
-        lifecycle=tuple(PyTransition(t, methods(tuple(f), 16, len(repr(t)) + 2))
-                        for t, f in plan.lifecycle if f),
-        has_impl=plan.has_impl, threads=plan.threads,
-        depends=plan.depends, exec_depends=exec_depends,
-        package_xml=package_xml(
-            banner, component.info,
-            buildtool=['ament_cmake', 'ament_cmake_python'],
-            exec_=exec_depends, test=['ament_cmake_pytest']),
-        folders=folders,
-        parameter_page=parameter_page(component, banner))
+        transitions=tuple(PyTransition(t, methods(tuple(f), 16, len(repr(t)) + 2))
+                          for t, f in plan.lifecycle if f),
+        depends=plan.depends, exec_depends=exec_depends)
