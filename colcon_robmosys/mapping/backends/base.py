@@ -20,7 +20,7 @@ from typing import Iterable, Mapping
 
 from colcon_robmosys.mapping.component import ComponentPlan
 from colcon_robmosys.mapping.context import ComponentContext
-from colcon_robmosys.mapping.portkinds import PortKind
+from colcon_robmosys.mapping.portkinds import Entity, PortKind, Returns
 from colcon_robmosys.mapping.tables import Row, UserRow
 from colcon_robmosys.mapping.userfiles import UserFolders
 from colcon_robmosys.model.types import Component, Language
@@ -61,6 +61,11 @@ class Backend(ABC):
     files: tuple[Row, ...]
     #: the user's files: created once next to the model, never rewritten
     user_files: tuple[UserRow, ...]
+    #: the ROS 2 entity of a port -> how the language holds and creates it:
+    #: one row per entity (``tests/test_backends.py``)
+    entities: Mapping[Entity, object]
+    #: what a function gives back -> how the language writes its type
+    return_types: Mapping[Returns, str]
     #: every package its components may need from the ROS 2 prefix, not
     #: from PyPI nor the workspace: without them a build is skipped
     prefix_packages: tuple[str, ...] = ()

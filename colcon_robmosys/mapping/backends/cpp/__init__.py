@@ -18,7 +18,7 @@ from colcon_robmosys.mapping.backends.base import Backend, NodeStart, PackageFac
 from colcon_robmosys.mapping.backends.cpp import usercode
 from colcon_robmosys.mapping.backends.cpp.context import CppComponent
 from colcon_robmosys.mapping.backends.cpp.spelling import (
-    CPP_CLIENT_PACKAGES, rclcpp_packages, spell_cpp)
+    CPP_CLIENT_PACKAGES, ENTITIES, rclcpp_packages, RETURN_TYPES, spell_cpp)
 from colcon_robmosys.mapping.component import ComponentPlan
 from colcon_robmosys.mapping.context import ComponentContext
 from colcon_robmosys.mapping.portkinds import PortKind
@@ -61,6 +61,8 @@ class CppBackend(Backend):
     language = Language.CPP
     files = FILES
     user_files = USER_FILES
+    entities = ENTITIES
+    return_types = RETURN_TYPES
     # rclcpp is not on PyPI: a machine without a ROS 2 install skips these
     prefix_packages = CPP_CLIENT_PACKAGES + ('rclcpp_action',)
 

@@ -18,6 +18,10 @@ class CppPort:
     entity: str
     type: str
     member_type: str
+    #: the fragment of create_ports that creates it
+    template: str
+    #: the parameters of the functions it runs (PARAMETERS), if it runs any
+    params: tuple[str, ...]
     description: str
     #: statements that set each QoS policy (topics and events)
     qos: tuple[str, ...]

@@ -13,6 +13,7 @@ Nothing here decides what a port becomes (that is the port-kind table of
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 import re
 import textwrap
 from typing import Iterable
@@ -45,17 +46,41 @@ def rclcpp_packages(kinds: Iterable[PortKind]) -> tuple[str, ...]:
     return CPP_CLIENT_PACKAGES + (('rclcpp_action',) if uses_actions else ())
 
 
-#: entity -> the type of the member that holds it
-MEMBER_TYPES = {
-    Entity.PUBLISHER: 'rclcpp_lifecycle::LifecyclePublisher<{type}>::SharedPtr',
-    Entity.SUBSCRIPTION: 'rclcpp::Subscription<{type}>::SharedPtr',
-    Entity.SERVICE: 'rclcpp::Service<{type}>::SharedPtr',
-    Entity.CLIENT: 'std::shared_ptr<ports::QueryClient<{type}>>',
-    Entity.ACTION_SERVER: 'rclcpp_action::Server<{type}>::SharedPtr',
-    Entity.ACTION_CLIENT: 'std::shared_ptr<ports::ActionClient<{type}>>',
-    Entity.EVENT_SERVER: 'std::shared_ptr<ports::EventServer<{type}>>',
-    Entity.EVENT_CLIENT: 'std::shared_ptr<ports::EventClient<{type}>>',
-}
+@dataclass(frozen=True)
+class CppEntity:
+    """How the C++ node holds and creates the entity of a port: its row."""
+
+    #: the type of the member that holds it
+    member_type: str
+    #: the fragment of create_ports that creates it (Inputs: port)
+    template: str
+    #: the header of robmosys_runtime its port needs, if any: its member
+    #: type's, or create_action_server's, whose rclcpp_action headers other
+    #: components skip
+    runtime_header: str = ''
+
+
+def _row(entity: Entity, member_type: str, runtime_header: str = '') -> tuple[Entity, CppEntity]:
+    return entity, CppEntity(member_type, f'component_cpp/ports/{entity.value}.jinja',
+                             runtime_header)
+
+
+#: entity -> its row, one per entity
+ENTITIES = dict((
+    _row(Entity.PUBLISHER, 'rclcpp_lifecycle::LifecyclePublisher<{type}>::SharedPtr'),
+    _row(Entity.SUBSCRIPTION, 'rclcpp::Subscription<{type}>::SharedPtr'),
+    _row(Entity.SERVICE, 'rclcpp::Service<{type}>::SharedPtr'),
+    _row(Entity.CLIENT, 'std::shared_ptr<ports::QueryClient<{type}>>',
+         'robmosys_runtime/query_client.hpp'),
+    _row(Entity.ACTION_SERVER, 'rclcpp_action::Server<{type}>::SharedPtr',
+         'robmosys_runtime/action_server.hpp'),
+    _row(Entity.ACTION_CLIENT, 'std::shared_ptr<ports::ActionClient<{type}>>',
+         'robmosys_runtime/action_client.hpp'),
+    _row(Entity.EVENT_SERVER, 'std::shared_ptr<ports::EventServer<{type}>>',
+         'robmosys_runtime/event_server.hpp'),
+    _row(Entity.EVENT_CLIENT, 'std::shared_ptr<ports::EventClient<{type}>>',
+         'robmosys_runtime/event_client.hpp'),
+))
 
 #: what a port delivers -> the parameters of a function it runs
 PARAMETERS = {
@@ -73,16 +98,6 @@ RETURN_TYPES = {
     Returns.NOTHING: 'void', Returns.ANSWER: 'void',
     Returns.RESULT: '{type}::Result', Returns.CONDITION: 'bool',
     Returns.PROBLEM: 'std::string',
-}
-
-#: entity -> the header of robmosys_runtime its port needs (its member type, or
-#: create_action_server, whose rclcpp_action headers other components skip)
-RUNTIME_HEADERS = {
-    Entity.CLIENT: 'robmosys_runtime/query_client.hpp',
-    Entity.ACTION_SERVER: 'robmosys_runtime/action_server.hpp',
-    Entity.ACTION_CLIENT: 'robmosys_runtime/action_client.hpp',
-    Entity.EVENT_SERVER: 'robmosys_runtime/event_server.hpp',
-    Entity.EVENT_CLIENT: 'robmosys_runtime/event_client.hpp',
 }
 
 
@@ -137,12 +152,19 @@ def qos_statements(qos: QoS) -> list[str]:
     return lines
 
 
+def _parameters(delivers: Delivery, type_: str, port: str) -> tuple[str, ...]:
+    """Return the parameters of a function a port runs, one a string."""
+    return tuple(p.strip() for p in PARAMETERS[delivers].format(type=type_, port=port).split(', '))
+
+
 def _port(port: PortPlan) -> CppPort:
     type_ = cpp_type(port.type)
     delivers = port.kind.delivers
+    row = ENTITIES[port.kind.entity]
     return CppPort(
         name=port.name, entity=port.entity, type=type_,
-        member_type=MEMBER_TYPES[port.kind.entity].format(type=type_),
+        member_type=row.member_type.format(type=type_), template=row.template,
+        params=_parameters(delivers, type_, port.name) if delivers is not None else (),
         description=port.description,
         # events: the QoS of the feedback topic
         qos=tuple(qos_statements(port.qos)) if port.kind.topic_qos else (),
@@ -163,7 +185,7 @@ def _signature(function: FunctionPlan) -> tuple[str, str]:
         return 'void', ''
     type_ = cpp_type(port.type)
     return (RETURN_TYPES[function.returns].format(type=type_),
-            PARAMETERS[port.kind.delivers].format(type=type_, port=port.name))
+            ', '.join(_parameters(port.kind.delivers, type_, port.name)))
 
 
 def _function(cls: str, function: FunctionPlan) -> CppFunction:
@@ -200,7 +222,7 @@ def _includes(plan: ComponentPlan, has_rules: bool) -> CppIncludes:
     ros += sorted({header_name(p.type) for p in plan.ports})
     ros += ['robmosys_runtime/component_node.hpp'] + (
         ['robmosys_runtime/parameters.hpp'] if has_rules else []) + sorted(
-        {RUNTIME_HEADERS[e] for e in plan.entities if e in RUNTIME_HEADERS})
+        {ENTITIES[e].runtime_header for e in plan.entities if ENTITIES[e].runtime_header})
     return CppIncludes(tuple(sorted(set(system))), tuple(ros))
 
 

@@ -16,7 +16,8 @@ from pathlib import Path
 from colcon_robmosys.mapping.backends.base import Backend, NodeStart, PackageFacts
 from colcon_robmosys.mapping.backends.python import usercode
 from colcon_robmosys.mapping.backends.python.context import PyComponent
-from colcon_robmosys.mapping.backends.python.spelling import spell_python
+from colcon_robmosys.mapping.backends.python.spelling import (
+    ENTITIES, RETURN_TYPES, spell_python)
 from colcon_robmosys.mapping.component import ComponentPlan
 from colcon_robmosys.mapping.context import ComponentContext
 from colcon_robmosys.mapping.tables import Row, UserRow
@@ -54,6 +55,8 @@ class PythonBackend(Backend):
     language = Language.PYTHON
     files = FILES
     user_files = USER_FILES
+    entities = ENTITIES
+    return_types = RETURN_TYPES
 
     def spell(self, component: Component, plan: ComponentPlan,
               folders: UserFolders) -> PyComponent:

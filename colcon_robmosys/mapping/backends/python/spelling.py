@@ -10,6 +10,7 @@ Nothing here decides what a port becomes (that is the port-kind table of
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 import textwrap
 from typing import Any, Mapping
 
@@ -28,24 +29,29 @@ from colcon_robmosys.model.types import Component, InterfaceRef, Parameter, QoS
 _QOS_NAMES = frozenset({'DurabilityPolicy', 'HistoryPolicy', 'LivelinessPolicy',
                         'QoSProfile', 'ReliabilityPolicy'})
 
-#: entity -> the method of robmosys_runtime.ComponentNode that creates it
-RUNTIME_METHODS = {
-    Entity.PUBLISHER: 'add_publisher', Entity.SUBSCRIPTION: 'add_subscription',
-    Entity.SERVICE: 'add_service', Entity.CLIENT: 'add_query_client',
-    Entity.ACTION_SERVER: 'add_action_server', Entity.ACTION_CLIENT: 'add_action_client',
-    Entity.EVENT_SERVER: 'add_event_server', Entity.EVENT_CLIENT: 'add_event_client',
-}
+_QOS = {'rclpy.qos': _QOS_NAMES}
 
-#: entity -> module -> the names its code imports (an empty set: the module)
-IMPORTS: dict[Entity, dict[str, frozenset[str]]] = {
-    Entity.PUBLISHER: {'rclpy.qos': _QOS_NAMES},
-    Entity.SUBSCRIPTION: {'rclpy.qos': _QOS_NAMES},
-    Entity.SERVICE: {},
-    Entity.CLIENT: {},
-    Entity.ACTION_SERVER: {},
-    Entity.ACTION_CLIENT: {},
-    Entity.EVENT_SERVER: {'rclpy.qos': _QOS_NAMES},
-    Entity.EVENT_CLIENT: {'rclpy.qos': _QOS_NAMES},
+
+@dataclass(frozen=True)
+class PyEntity:
+    """How the Python node creates the entity of a port: its row."""
+
+    #: the method of robmosys_runtime.ComponentNode that creates it
+    method: str
+    #: module -> the names its code imports (an empty set: the module)
+    imports: Mapping[str, frozenset[str]] = field(default_factory=dict)
+
+
+#: entity -> its row, one per entity
+ENTITIES = {
+    Entity.PUBLISHER: PyEntity('add_publisher', _QOS),
+    Entity.SUBSCRIPTION: PyEntity('add_subscription', _QOS),
+    Entity.SERVICE: PyEntity('add_service'),
+    Entity.CLIENT: PyEntity('add_query_client'),
+    Entity.ACTION_SERVER: PyEntity('add_action_server'),
+    Entity.ACTION_CLIENT: PyEntity('add_action_client'),
+    Entity.EVENT_SERVER: PyEntity('add_event_server', _QOS),
+    Entity.EVENT_CLIENT: PyEntity('add_event_client', _QOS),
 }
 
 #: packages the code of every component needs at run time
@@ -120,7 +126,7 @@ def _node_imports(names: dict[InterfaceRef, str], plan: ComponentPlan,
                     'IntegerRange' if parameter.type == 'int'
                     else 'FloatingPointRange'})
     for entity in plan.entities:
-        for module, imported in IMPORTS[entity].items():
+        for module, imported in ENTITIES[entity].imports.items():
             _add(modules, module, imported)
     if uses_duration:
         modules['rclpy.duration'] = {'Duration'}
@@ -216,7 +222,7 @@ def _port(port: PortPlan, type_name: str) -> PyPort:
         # query and action ports use the QoS of services and actions
         qos=qos_expression(port.qos) if port.kind.topic_qos else None,
         qos_const=f'QOS_{port.name.upper()}', activity=port.activity,
-        functions=port.functions, method=RUNTIME_METHODS[port.kind.entity], run=run)
+        functions=port.functions, method=ENTITIES[port.kind.entity].method, run=run)
 
 
 def _range(parameter: Parameter) -> ParameterRange | None:
