@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import ast
 from pathlib import Path
+import re
 
 import pytest
 
@@ -208,3 +209,65 @@ def test_the_language_test_finds_what_it_looks_for():
                      "x = 'cpp' if compiled else 'python'\n"
                      "if path.suffix in ('.hpp', '.h'):\n    pass\n")
     assert _language_tests(tree) == [1, 3, 6]
+
+
+#: Where a path docs/architecture.md names may lie: the package's folders are
+#: named without ``colcon_robmosys/``, templates at times without ``templates/``.
+DOC_ROOTS = (REPO, PACKAGE, REPO / 'templates')
+#: Suffixes of the files a document names.
+DOC_SUFFIXES = ('.py', '.jinja', '.json', '.md', '.cfg')
+
+
+def _expand(pattern: str) -> list[str]:
+    """Return a path of a document as globs: ``<name>`` is any, ``{a,b}`` either."""
+    pattern = re.sub(r'<[^>]+>', '*', pattern)
+    match = re.search(r'\{([^}]*)\}', pattern)
+    if match is None:
+        return [pattern]
+    return [expanded for option in match[1].split(',')
+            for expanded in _expand(pattern[:match.start()] + option + pattern[match.end():])]
+
+
+def _named_paths(text: str) -> list[str]:
+    """Return what a document names in backquotes that is a path of the repository.
+
+    A name with a slash counts when its first folder is one of the
+    repository or the package (``pkg/msg/Name`` is no path); a file name
+    without one when it has a suffix of ours, found anywhere below the
+    package or the templates (``graph.py`` of the importer's row).
+    """
+    found = []
+    for name in re.findall(r'`([^`\s]+)`', text):
+        first = name.split('/')[0]
+        if '/' in name:
+            if any(glob_exists(root, first) for root in DOC_ROOTS):
+                found.append(name)
+        elif name.endswith(DOC_SUFFIXES):
+            found.append('**/' + name)
+    return found
+
+
+def _missing(named: list[str]) -> list[str]:
+    """Return the paths of a document that exist nowhere."""
+    return [name for name in named
+            if not any(glob_exists(root, name) for root in
+                       (DOC_ROOTS[1:] if name.startswith('**/') else DOC_ROOTS))]
+
+
+def glob_exists(root: Path, pattern: str) -> bool:
+    """Tell whether a path pattern of a document matches below a root."""
+    return any(next(iter(root.glob(p.rstrip('/'))), None) is not None
+               for p in _expand(pattern))
+
+
+def test_every_path_the_architecture_names_exists():
+    text = (REPO / 'docs' / 'architecture.md').read_text(encoding='utf-8')
+    named = _named_paths(text)
+    assert 'mapping/portkinds.py' in named and '**/graph.py' in named
+    assert _missing(named) == []
+
+
+def test_a_path_of_a_document_is_a_glob():
+    assert _expand('generators/{cpp,python}.py') == ['generators/cpp.py', 'generators/python.py']
+    assert _expand('templates/component_<language>/') == ['templates/component_*/']
+    assert not glob_exists(REPO, 'templates/component_python/ports/<entity>.jinja')
