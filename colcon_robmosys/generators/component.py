@@ -8,17 +8,17 @@ from __future__ import annotations
 from pathlib import Path
 
 from colcon_robmosys.errors import Location
-from colcon_robmosys.generators.plan import (
-    files_of, implementation_of, PackagePlan, user_files_of)
+from colcon_robmosys.generators.files import (
+    files_of, implementation_of, PackageFiles, user_files_of)
 from colcon_robmosys.mapping.backends import Backend
 from colcon_robmosys.mapping.context import ComponentContext
 
 
 def component_package(backend: Backend, context: ComponentContext, model_dir: Path,
-                      location: Location) -> PackagePlan:
+                      location: Location) -> PackageFiles:
     """Return the files of a component package, spelled by its language's backend."""
     facts = backend.package(context)
-    return PackagePlan(
+    return PackageFiles(
         name=context.package, kind='component', model_dir=model_dir,
         build_depends=facts.build_depends, exec_depends=facts.exec_depends,
         files=files_of(backend.files, context),

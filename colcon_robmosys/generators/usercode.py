@@ -15,7 +15,7 @@ import re
 from typing import Iterable, Iterator, Mapping
 
 from colcon_robmosys.errors import Diagnostic, Location
-from colcon_robmosys.generators.plan import PackagePlan, UserFile
+from colcon_robmosys.generators.files import PackageFiles, UserFile
 from colcon_robmosys.generators.render import render
 
 #: What a build leaves among the user's files: never part of the package.
@@ -73,21 +73,21 @@ def _user_files_below(folder: Path) -> Iterator[Path]:
                 yield Path(root, name)
 
 
-def user_tree(plan: PackagePlan) -> dict[str, tuple[bytes, bool]]:
+def user_tree(package: PackageFiles) -> dict[str, tuple[bytes, bool]]:
     """Return the user's files of a package, at their paths next to the model.
 
     :returns: path relative to the model's directory -> content, and
       whether it is executable
     """
     found = {}
-    for folder in plan.user_folders:
-        for path in _user_files_below(plan.model_dir / folder):
-            relative = path.relative_to(plan.model_dir).as_posix()
+    for folder in package.user_folders:
+        for path in _user_files_below(package.model_dir / folder):
+            relative = path.relative_to(package.model_dir).as_posix()
             found[relative] = (path.read_bytes(), os.access(path, os.X_OK))
     return found
 
 
-def merge_conflicts(plan: PackagePlan,
+def merge_conflicts(package: PackageFiles,
                     outputs: Mapping[str, object]) -> list[Diagnostic]:
     """Return an error for each file of the user's that takes a generated name.
 
@@ -95,9 +95,9 @@ def merge_conflicts(plan: PackagePlan,
     package: one of them would replace the other.
     """
     problems = []
-    for folder, generated in plan.merged_folders.items():
-        for path in _user_files_below(plan.model_dir / folder):
-            relative = path.relative_to(plan.model_dir / folder).as_posix()
+    for folder, generated in package.merged_folders.items():
+        for path in _user_files_below(package.model_dir / folder):
+            relative = path.relative_to(package.model_dir / folder).as_posix()
             if f'{generated}/{relative}' in outputs:
                 problems.append(Diagnostic(
                     Location(str(path)),
@@ -111,7 +111,7 @@ def merge_conflicts(plan: PackagePlan,
 _IMPL_NAME = re.compile(r'(?P<cls>[A-Za-z_][A-Za-z0-9_]*)_impl')
 
 
-def orphan_problems(plan: PackagePlan) -> list[Diagnostic]:
+def orphan_problems(package: PackageFiles) -> list[Diagnostic]:
     """Return one error for the implementation files of no component of the model.
 
     Renaming a component in the model leaves its implementation files behind:
@@ -131,10 +131,10 @@ def orphan_problems(plan: PackagePlan) -> list[Diagnostic]:
     changed and the one to change back: the message names the files, and
     the rename to make where the model evidently renamed the component.
     """
-    impl = plan.implementation
+    impl = package.implementation
     if impl is None:
         return []
-    folder = plan.model_dir / impl.folder
+    folder = package.model_dir / impl.folder
     try:
         names = sorted(os.listdir(folder))
     except OSError:
@@ -154,17 +154,17 @@ def orphan_problems(plan: PackagePlan) -> list[Diagnostic]:
     named = ', '.join(f"'{cls}'" for cls in orphans)
     if len(orphans) == 1:
         message = f'the implementation of a component {named}, which the package ' \
-            f"'{plan.name}' does not have"
+            f"'{package.name}' does not have"
     else:
         message = f'the implementations of components {named}, which the package ' \
-            f"'{plan.name}' does not have"
+            f"'{package.name}' does not have"
     message = f"{', '.join(str(p) for p in paths)}: {message}; "
     new = impl.component
-    if len(orphans) == 1 and plan.user_files:
+    if len(orphans) == 1 and package.user_files:
         old, group = next(iter(orphans.items()))
         suffixes = [p.suffix for p in group]
         message += f"was '{old}' renamed to '{new}'? "
-        own = _own_files(plan)
+        own = _own_files(package)
         if own is None:
             message += f'move what you need of {_names(old, suffixes)} into ' \
                 f'{_names(new, impl.suffixes)}, then delete {it}'
@@ -174,8 +174,8 @@ def orphan_problems(plan: PackagePlan) -> list[Diagnostic]:
             if own:
                 # made by a generation since the rename: nothing of the user's
                 message += f' (over {_names(new, own)}, made from the model since)'
-    elif plan.user_files:
-        message += f"the component of '{plan.name}' is '{new}': move what you need " \
+    elif package.user_files:
+        message += f"the component of '{package.name}' is '{new}': move what you need " \
             f'of {it} into {_names(new, impl.suffixes)}, then delete {it}'
     else:
         message += f"its component '{new}' has no function of the user's: delete {it}"
@@ -189,7 +189,7 @@ def _names(cls: str, suffixes: Iterable[str]) -> str:
     return f'{cls}_impl' + '/'.join(suffixes)
 
 
-def _own_files(plan: PackagePlan) -> list[str] | None:
+def _own_files(package: PackageFiles) -> list[str] | None:
     """Return the component's implementation files that hold nothing of the user's.
 
     :returns: the suffixes of those there as the generator makes them from the
@@ -197,8 +197,8 @@ def _own_files(plan: PackagePlan) -> list[str] | None:
       holds the user's code
     """
     untouched = []
-    for user_file in plan.user_files:
-        path = plan.model_dir / user_file.source_path
+    for user_file in package.user_files:
+        path = package.model_dir / user_file.source_path
         try:
             data = path.read_bytes()
         except FileNotFoundError:

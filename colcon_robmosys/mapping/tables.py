@@ -4,7 +4,7 @@
 """The rows of the generators' tables: one template, one output path.
 
 A language backend (:mod:`colcon_robmosys.mapping.backends`) declares its
-files with them; :mod:`colcon_robmosys.generators.plan` makes files of them.
+files with them; :mod:`colcon_robmosys.generators.files` makes files of them.
 """
 
 from __future__ import annotations

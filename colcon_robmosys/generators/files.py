@@ -1,10 +1,12 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-"""What a generator makes of a mapping plan: files, each from a template.
+"""What a generator makes of a mapping plan: the files of a package, each from a template.
 
 A generator is a table of rows (template -> output path); the variables of
-every template are a typed, frozen context of the mapping.
+every template are a typed, frozen context of the mapping. "Plan" is the
+mapping's word (ComponentPlan, the system's and the interfaces' plans); what
+a generator makes of one is a package's files (:class:`PackageFiles`).
 """
 
 from __future__ import annotations
@@ -74,8 +76,8 @@ class Implementation:
 
 
 @dataclass(frozen=True)
-class PackagePlan:
-    """Everything needed to generate one ROS 2 package."""
+class PackageFiles:
+    """Everything needed to generate one ROS 2 package: its files, and the user's."""
 
     name: str
     #: 'interfaces', 'component' or 'system'
