@@ -12,13 +12,14 @@ imports, includes.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Iterable, Mapping, TypeVar
+from typing import Any, Callable, Iterable, Mapping, TypeVar
 
 from colcon_robmosys.mapping.common import Banner, banner_of, package_xml, PackageXml
 from colcon_robmosys.mapping.component import ComponentPlan
-from colcon_robmosys.mapping.parameters import parameter_page, ParameterPage
+from colcon_robmosys.mapping.parameters import (
+    parameter_groups, parameter_page, ParameterGroup, ParameterPage)
 from colcon_robmosys.mapping.userfiles import UserFolders
-from colcon_robmosys.model.types import Component
+from colcon_robmosys.model.types import Component, Parameter
 
 
 @dataclass(frozen=True)
@@ -47,6 +48,40 @@ class SpelledParameter:
     #: its ParameterRule as the language fills it (statements or arguments),
     #: none without rules beyond the descriptor
     rule: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class GroupClass:
+    """The class of a group of parameters: typed access, nested by dotted names."""
+
+    #: its name, as the language names it
+    cls: str
+    doc: str
+    parameters: tuple[SpelledParameter, ...]
+    #: (accessor, class) of each subgroup
+    groups: tuple[tuple[str, str], ...]
+
+
+#: a backend's class of a group
+Group = TypeVar('Group', bound=GroupClass)
+
+
+def group_classes(
+        kind: type[Group], parameters: tuple[Parameter, ...],
+        spelled: Mapping[str, SpelledParameter],
+        names: Callable[[tuple[ParameterGroup, ...]], Mapping[tuple[str, ...], str]],
+        doc: Callable[[tuple[str, ...]], str]) -> tuple[Group, ...]:
+    """Return the classes of the groups of parameters, a subgroup first, the root last.
+
+    :param spelled: the parameters as the language spells them, by name
+    :param names: the classes' names, by the path of their groups
+    :param doc: the docstring of a group's class, by its path
+    """
+    groups = parameter_groups(parameters)
+    named = names(groups)
+    return tuple(kind(
+        named[g.path], doc(g.path), tuple(spelled[p.name] for p in g.parameters),
+        tuple((sub, named[g.path + (sub,)]) for sub in g.groups)) for g in groups)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from colcon_robmosys.mapping.context import ComponentContext, SpelledParameter
+from colcon_robmosys.mapping.context import ComponentContext, GroupClass, SpelledParameter
 
 
 @dataclass(frozen=True)
@@ -61,15 +61,8 @@ class CppParameter(SpelledParameter):
 
 
 @dataclass(frozen=True)
-class CppParameterGroup:
-    """The class of a group of parameters: typed access, nested by dotted names."""
-
-    #: its name in Parameters ('' for Parameters itself)
-    cls: str
-    doc: str
-    parameters: tuple[CppParameter, ...]
-    #: (member, class) of each subgroup
-    groups: tuple[tuple[str, str], ...]
+class CppParameterGroup(GroupClass):
+    """The class of a group of parameters, named in Parameters ('' for Parameters itself)."""
 
     @property
     def initializers(self) -> list[str]:

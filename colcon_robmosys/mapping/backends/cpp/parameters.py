@@ -8,9 +8,9 @@ from __future__ import annotations
 from typing import Any
 
 from colcon_robmosys.mapping.backends.cpp.context import CppParameter, CppParameterGroup
-from colcon_robmosys.mapping.context import ParameterRange
+from colcon_robmosys.mapping.context import group_classes, ParameterRange
 from colcon_robmosys.mapping.literals import cpp_str, split_literal
-from colcon_robmosys.mapping.parameters import group_class_names, parameter_groups
+from colcon_robmosys.mapping.parameters import group_class_names, ParameterGroup
 from colcon_robmosys.model.types import Parameter
 
 #: model type -> (C++ type, ParameterValue accessor)
@@ -127,12 +127,11 @@ def _rule_lines(parameter: Parameter, cls: str, ctype: str) -> list[str]:
 def cpp_parameter_groups(parameters: tuple[Parameter, ...],
                          spelled: tuple[CppParameter, ...]) -> tuple[CppParameterGroup, ...]:
     """Return the classes of the groups of parameters, a subgroup first, Parameters last."""
-    groups = parameter_groups(parameters)
-    names = {path: f'{name}Group' for path, name in group_class_names(groups, '').items()}
-    names[()] = ''
-    by_name = {p.name: p for p in spelled}
-    return tuple(CppParameterGroup(
-        names[g.path],
-        f'Typed access to the parameters {".".join(g.path)}.*.' if g.path else '',
-        tuple(by_name[p.name] for p in g.parameters),
-        tuple((sub, names[g.path + (sub,)]) for sub in g.groups)) for g in groups)
+    def names(groups: tuple[ParameterGroup, ...]) -> dict[tuple[str, ...], str]:
+        named = {path: f'{name}Group' for path, name in group_class_names(groups, '').items()}
+        named[()] = ''
+        return named
+
+    return group_classes(
+        CppParameterGroup, parameters, {p.name: p for p in spelled}, names,
+        lambda path: f'Typed access to the parameters {".".join(path)}.*.' if path else '')

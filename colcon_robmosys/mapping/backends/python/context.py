@@ -8,7 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from colcon_robmosys.mapping.context import ComponentContext, SpelledParameter
+from colcon_robmosys.mapping.context import ComponentContext, GroupClass, SpelledParameter
 
 
 @dataclass(frozen=True)
@@ -59,17 +59,6 @@ class PyParameter(SpelledParameter):
 
 
 @dataclass(frozen=True)
-class PyParameterGroup:
-    """The class of a group of parameters: typed access, nested by dotted names."""
-
-    cls: str
-    doc: str
-    parameters: tuple[PyParameter, ...]
-    #: (attribute, class) of each subgroup
-    groups: tuple[tuple[str, str], ...]
-
-
-@dataclass(frozen=True)
 class PyActivity:
     """A periodic activity and its timer."""
 
@@ -107,7 +96,7 @@ class PyComponent(ComponentContext):
     user_functions: tuple[PyFunction, ...]
     parameters: tuple[PyParameter, ...]
     #: subgroups first, the class of the node's own parameters last
-    parameter_groups: tuple[PyParameterGroup, ...]
+    parameter_groups: tuple[GroupClass, ...]
     #: the lifecycle transitions that run functions, and how
     transitions: tuple[PyTransition, ...]
     #: packages it builds against (its interfaces), and runs with

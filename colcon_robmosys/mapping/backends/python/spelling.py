@@ -15,12 +15,13 @@ import textwrap
 from typing import Any, Mapping
 
 from colcon_robmosys.mapping.backends.python.context import (
-    PyActivity, PyComponent, PyFunction, PyParameter, PyParameterGroup, PyPort, PyTransition)
+    PyActivity, PyComponent, PyFunction, PyParameter, PyPort, PyTransition)
 from colcon_robmosys.mapping.common import RUNTIME_PACKAGE
 from colcon_robmosys.mapping.component import (
     ComponentPlan, FunctionPlan, PortPlan)
-from colcon_robmosys.mapping.context import component_context, ParameterRange
-from colcon_robmosys.mapping.parameters import group_class_names, parameter_groups
+from colcon_robmosys.mapping.context import (
+    component_context, group_classes, GroupClass, ParameterRange)
+from colcon_robmosys.mapping.parameters import group_class_names
 from colcon_robmosys.mapping.portkinds import Entity, Returns
 from colcon_robmosys.mapping.qos import resolve_qos
 from colcon_robmosys.mapping.userfiles import UserFolders
@@ -268,18 +269,6 @@ def _rule(parameter: Parameter) -> tuple[str, ...]:
     return tuple(args)
 
 
-def _groups(parameters: tuple[Parameter, ...], cls: str,
-            spelled: dict[str, PyParameter]) -> tuple[PyParameterGroup, ...]:
-    groups = parameter_groups(parameters)
-    names = group_class_names(groups, f'{cls}Parameters')
-    return tuple(PyParameterGroup(
-        names[g.path],
-        f'Typed access to the parameters {".".join(g.path)}.* of {cls}.' if g.path
-        else f'Typed access to the current parameter values of {cls}.',
-        tuple(spelled[p.name] for p in g.parameters),
-        tuple((sub, names[g.path + (sub,)]) for sub in g.groups)) for g in groups)
-
-
 def _function(function: FunctionPlan,
               type_names: dict[InterfaceRef, str]) -> PyFunction:
     code = None
@@ -338,7 +327,11 @@ def spell_python(component: Component, plan: ComponentPlan,
         activity_names=tuple(a.name for a in plan.activities),
         functions=functions, user_functions=user_functions,
         parameters=tuple(spelled.values()),
-        parameter_groups=_groups(plan.parameters, cls, spelled),
+        parameter_groups=group_classes(
+            GroupClass, plan.parameters, spelled,
+            lambda groups: group_class_names(groups, f'{cls}Parameters'),
+            lambda path: f'Typed access to the parameters {".".join(path)}.* of {cls}.'
+            if path else f'Typed access to the current parameter values of {cls}.'),
         transitions=tuple(PyTransition(t, methods(tuple(f), 16, len(repr(t)) + 2))
                           for t, f in plan.lifecycle if f),
         depends=plan.depends, exec_depends=exec_depends)
