@@ -2,7 +2,6 @@
 # Licensed under the Apache License, Version 2.0
 
 import os
-from pathlib import Path
 
 from colcon_core.logging import colcon_logger
 from colcon_core.package_selection import PackageSelectionExtensionPoint
@@ -10,6 +9,9 @@ from colcon_core.plugin_system import satisfies_version
 
 from colcon_robmosys.mapping.backends import PREFIX_PACKAGES
 from colcon_robmosys.package_discovery.robmosys import checked_result
+from colcon_robmosys.runtime import environ_prefixes
+from colcon_robmosys.runtime import package_markers
+from colcon_robmosys.runtime import search_prefixes
 
 logger = colcon_logger.getChild(__name__)
 
@@ -94,21 +96,9 @@ def missing_prefix_packages(names, dependency_prefixes=(), environ=None):
     its ament index entry or its CMake config file, which is what
     find_package() will look for.
     """
-    # not ament_index_python: it reads os.environ's AMENT_PREFIX_PATH only, and
-    # find_package() also looks in CMAKE_PREFIX_PATH and the dependencies' prefixes
     environ = os.environ if environ is None else environ
-    prefixes = [Path(p) for p in dependency_prefixes]
-    for variable in ('AMENT_PREFIX_PATH', 'CMAKE_PREFIX_PATH'):
-        prefixes += [Path(p) for p in
-                     environ.get(variable, '').split(os.pathsep) if p]
-    missing = []
-    for name in names:
-        share = Path('share')
-        candidates = (
-            share / 'ament_index' / 'resource_index' / 'packages' / name,
-            share / name / 'cmake' / f'{name}Config.cmake',
-            share / name / 'cmake' / f'{name}-config.cmake')
-        if not any((prefix / c).exists()
-                   for prefix in prefixes for c in candidates):
-            missing.append(name)
-    return missing
+    prefixes = list(dependency_prefixes) + \
+        environ_prefixes(environ, 'AMENT_PREFIX_PATH') + \
+        environ_prefixes(environ, 'CMAKE_PREFIX_PATH')
+    return [name for name in names
+            if search_prefixes(prefixes, package_markers(name)) is None]
