@@ -71,8 +71,8 @@ class Implementation:
     #: where the model names the component
     location: Location
     #: whether files of a class hold what the generator made of a component
-    #: of that name (its language's test)
-    implements: Callable[[str, list[Path]], bool]
+    #: of that name (its language's test, on their texts; None: unreadable)
+    implements: Callable[[str, Mapping[Path, str | None]], bool]
 
 
 @dataclass(frozen=True)
@@ -152,8 +152,9 @@ def user_files_of(rows: tuple[UserRow, ...],
         for row in rows if not row.when or getattr(context, row.when))
 
 
-def implementation_of(rows: tuple[UserRow, ...], context: Any, location: Location,
-                      implements: Callable[[str, list[Path]], bool]) -> Implementation:
+def implementation_of(
+        rows: tuple[UserRow, ...], context: Any, location: Location,
+        implements: Callable[[str, Mapping[Path, str | None]], bool]) -> Implementation:
     """Return how the implementation files of a table's component are named.
 
     Every row is ``<folder>/{cls}_impl<suffix>``; a component without

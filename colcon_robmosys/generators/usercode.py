@@ -146,7 +146,8 @@ def orphan_problems(package: PackageFiles) -> list[Diagnostic]:
         if suffix in impl.suffixes and match and match['cls'] != impl.component:
             groups.setdefault(match['cls'], []).append(folder / name)
     orphans = {cls: sorted(paths, key=lambda p: impl.suffixes.index(p.suffix))
-               for cls, paths in sorted(groups.items()) if impl.implements(cls, paths)}
+               for cls, paths in sorted(groups.items())
+               if impl.implements(cls, {path: _text(path) for path in paths})}
     if not orphans:
         return []
     paths = [p for group in orphans.values() for p in group]
@@ -182,6 +183,14 @@ def orphan_problems(package: PackageFiles) -> list[Diagnostic]:
         if len(orphans) == 1:
             message += f', or name the component {named} again'
     return [Diagnostic(impl.location, message)]
+
+
+def _text(path: Path) -> str | None:
+    """Return the text of a file, None if it cannot be read as UTF-8."""
+    try:
+        return path.read_text(encoding='utf-8')
+    except (OSError, UnicodeDecodeError):
+        return None  # not the code the generator made
 
 
 def _names(cls: str, suffixes: Iterable[str]) -> str:

@@ -93,11 +93,11 @@ class Backend(ABC):
         return ()
 
     @abstractmethod
-    def implements(self, cls: str, paths: list[Path]) -> bool:
+    def implements(self, cls: str, texts: Mapping[Path, str | None]) -> bool:
         """Tell whether files hold what the generator made of a component ``cls``.
 
-        :param paths: files ``<cls>_impl<suffix>`` of the suffixes of
-          :attr:`user_files`
+        :param texts: the files ``<cls>_impl<suffix>`` of the suffixes of
+          :attr:`user_files`, by path: their texts, None where unreadable
         """
 
     @abstractmethod

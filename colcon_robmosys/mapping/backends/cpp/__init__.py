@@ -12,7 +12,7 @@ model) the user's implementation, which derives from the generated class.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Iterable
+from typing import Iterable, Mapping
 
 from colcon_robmosys.mapping.backends.base import Backend, NodeStart, PackageFacts
 from colcon_robmosys.mapping.backends.cpp import usercode
@@ -82,9 +82,9 @@ class CppBackend(Backend):
         """Return the rclcpp packages of a component with ports of these kinds."""
         return rclcpp_packages(kinds)
 
-    def implements(self, cls: str, paths: list[Path]) -> bool:
+    def implements(self, cls: str, texts: Mapping[Path, str | None]) -> bool:
         """Tell whether files hold what the generator made of a component ``cls``."""
-        return usercode.implements(cls, paths)
+        return usercode.implements(cls, texts)
 
     def node_start(self, plan: ComponentPlan) -> NodeStart:
         """Return the rclcpp_components plugin the component's package registers."""

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from pathlib import Path
 import re
+from typing import Mapping
 
 from colcon_robmosys.errors import Diagnostic, Location
 
@@ -46,19 +47,19 @@ def header_problems(path: Path, text: str, required_class: str,
     return problems, bool(problems)
 
 
-def implements(cls: str, paths: list[Path]) -> bool:
+def implements(cls: str, texts: Mapping[Path, str | None]) -> bool:
     """Tell whether C++ files hold the implementation of a component ``cls``.
 
     The class ``<cls>_impl`` derived from ``cls``, or, for a source without
     its header, the definitions of its functions.
+
+    :param texts: the files by path, None where unreadable
     """
-    suffixes = {p.suffix for p in paths}
+    suffixes = {p.suffix for p in texts}
     name = re.escape(f'{cls}_impl')
-    for path in paths:
-        try:
-            text = path.read_text(encoding='utf-8')
-        except (OSError, UnicodeDecodeError):
-            continue  # not the code the generator made
+    for path, text in texts.items():
+        if text is None:
+            continue
         code = _CPP_NOISE.sub(' ', text)
         found = re.search(rf'\b(?:class|struct)\s+{name}\b[^;{{]*:[^;{{]*'
                           rf'\b{re.escape(cls)}\b', code)

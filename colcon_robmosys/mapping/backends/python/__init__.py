@@ -12,6 +12,7 @@ generated ones in one Python package.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Mapping
 
 from colcon_robmosys.mapping.backends.base import Backend, NodeStart, PackageFacts
 from colcon_robmosys.mapping.backends.python import usercode
@@ -71,9 +72,9 @@ class PythonBackend(Backend):
             # the user's modules join the generated ones in one Python package
             merged_folders={context.folders.code: context.package})
 
-    def implements(self, cls: str, paths: list[Path]) -> bool:
+    def implements(self, cls: str, texts: Mapping[Path, str | None]) -> bool:
         """Tell whether files hold what the generator made of a component ``cls``."""
-        return usercode.implements(cls, paths)
+        return usercode.implements(cls, texts)
 
     def node_start(self, plan: ComponentPlan) -> NodeStart:
         """Return module:class of the node the component's executable runs.

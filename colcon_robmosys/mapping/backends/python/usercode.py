@@ -8,6 +8,7 @@ from __future__ import annotations
 import ast
 from pathlib import Path
 import re
+from typing import Mapping
 
 from colcon_robmosys.errors import Diagnostic, Location
 
@@ -42,15 +43,11 @@ def module_problems(path: Path, text: str, required_class: str,
     return problems, bool(problems)
 
 
-def implements(cls: str, paths: list[Path]) -> bool:
-    """Tell whether Python files hold the class ``<cls>_impl`` derived from ``cls``."""
-    name = re.escape(f'{cls}_impl')
-    for path in paths:
-        try:
-            text = path.read_text(encoding='utf-8')
-        except (OSError, UnicodeDecodeError):
-            continue  # not the code the generator made
-        if re.search(rf'^class\s+{name}\s*\([^)]*\b{re.escape(cls)}\b', text,
-                     re.MULTILINE):
-            return True
-    return False
+def implements(cls: str, texts: Mapping[Path, str | None]) -> bool:
+    """Tell whether Python files hold the class ``<cls>_impl`` derived from ``cls``.
+
+    :param texts: the files by path, None where unreadable
+    """
+    declared = re.compile(rf'^class\s+{re.escape(f"{cls}_impl")}\s*\([^)]*\b{re.escape(cls)}\b',
+                          re.MULTILINE)
+    return any(text is not None and declared.search(text) for text in texts.values())
