@@ -203,6 +203,21 @@ def test_only_the_backends_ask_for_a_language():
     assert asking == []
 
 
+#: A template that compares a value with a language's name.
+TEMPLATE_LANGUAGE_TEST = re.compile(r"""(==|!=|\bis)\s*['"](cpp|python)['"]""")
+
+
+def test_only_the_backends_templates_know_a_language():
+    """The shared templates take what differs from the backend's (starter: its fragments)."""
+    asking = [f'{path.relative_to(REPO)}:{number}'
+              for path in sorted((REPO / 'templates').rglob('*.jinja'))
+              if not path.parent.name.startswith('component_')
+              for number, line in enumerate(path.read_text(encoding='utf-8').splitlines(), 1)
+              if TEMPLATE_LANGUAGE_TEST.search(line)]
+    assert asking == []
+    assert TEMPLATE_LANGUAGE_TEST.search("{% set python = language == 'python' %}")
+
+
 def test_the_language_test_finds_what_it_looks_for():
     tree = ast.parse('if component.language is Language.CPP:\n    pass\n'
                      "if outline.language == 'python':\n    pass\n"

@@ -45,7 +45,7 @@ def test_every_delivery_has_parameters_in_cpp():
 @pytest.mark.parametrize('language', LANGUAGES, ids=lambda language: language.value)
 def test_the_templates_of_a_backend_exist(language):
     backend = BACKENDS[language]
-    named = [row.template for row in backend.files + backend.user_files]
+    named = [row.template for row in backend.files + backend.user_files] + [backend.starter]
     for row in backend.entities.values():
         assert is_dataclass(row)
         named += [getattr(row, f.name) for f in fields(row) if f.name == 'template']

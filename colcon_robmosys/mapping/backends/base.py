@@ -66,6 +66,9 @@ class Backend(ABC):
     entities: Mapping[Entity, object]
     #: what a function gives back -> how the language writes its type
     return_types: Mapping[Returns, str]
+    #: the template of what a starting component says and does in the
+    #: language (colcon robmosys-new component)
+    starter: str
     #: every package its components may need from the ROS 2 prefix, not
     #: from PyPI nor the workspace: without them a build is skipped
     prefix_packages: tuple[str, ...] = ()

@@ -62,6 +62,7 @@ class CppBackend(Backend):
     files = FILES
     user_files = USER_FILES
     entities = ENTITIES
+    starter = 'component_cpp/starter.jinja'
     return_types = RETURN_TYPES
     # rclcpp is not on PyPI: a machine without a ROS 2 install skips these
     prefix_packages = CPP_CLIENT_PACKAGES + ('rclcpp_action',)

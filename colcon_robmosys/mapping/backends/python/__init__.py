@@ -57,6 +57,7 @@ class PythonBackend(Backend):
     files = FILES
     user_files = USER_FILES
     entities = ENTITIES
+    starter = 'component_python/starter.jinja'
     return_types = RETURN_TYPES
 
     def spell(self, component: Component, plan: ComponentPlan,
