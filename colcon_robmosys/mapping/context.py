@@ -36,6 +36,44 @@ class ParameterRange:
 
 
 @dataclass(frozen=True, kw_only=True)
+class SpelledPort:
+    """A port as every language creates it; ``type`` is the language's name of its interface."""
+
+    name: str
+    #: the entity it becomes (portkinds' Entity value)
+    entity: str
+    type: str
+    description: str
+    #: the activity it triggers, and that activity's functions
+    activity: str | None
+    functions: tuple[str, ...]
+
+
+@dataclass(frozen=True, kw_only=True)
+class SpelledFunction:
+    """A function of the model as every language declares it."""
+
+    name: str
+    #: its return type, as the language writes it
+    returns: str
+    #: the embedded code, indented for its body; None: the user writes it
+    code: str | None
+    #: the text that documents it
+    description: str
+
+
+@dataclass(frozen=True, kw_only=True)
+class SpelledActivity:
+    """An activity as every language runs it."""
+
+    name: str
+    #: seconds between two runs, if periodic
+    period: float | None
+    functions: tuple[str, ...]
+    description: str
+
+
+@dataclass(frozen=True, kw_only=True)
 class SpelledParameter:
     """A parameter as every language declares it: its accessor, range and rule."""
 

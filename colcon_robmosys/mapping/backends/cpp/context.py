@@ -7,43 +7,34 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from colcon_robmosys.mapping.context import ComponentContext, GroupClass, SpelledParameter
+from colcon_robmosys.mapping.context import (
+    ComponentContext, GroupClass, SpelledActivity, SpelledFunction, SpelledParameter, SpelledPort)
 
 
-@dataclass(frozen=True)
-class CppPort:
+@dataclass(frozen=True, kw_only=True)
+class CppPort(SpelledPort):
     """A port as the C++ node declares and creates it."""
 
-    name: str
-    entity: str
-    type: str
     member_type: str
     #: the fragment of create_ports that creates it
     template: str
     #: the parameters of the functions it runs (PARAMETERS), if it runs any
     params: tuple[str, ...]
-    description: str
     #: statements that set each QoS policy (topics and events)
     qos: tuple[str, ...]
-    activity: str | None
-    functions: tuple[str, ...]
     own_group: bool
     call_args: str
 
 
-@dataclass(frozen=True)
-class CppFunction:
+@dataclass(frozen=True, kw_only=True)
+class CppFunction(SpelledFunction):
     """A function of the model as a virtual member function."""
 
-    name: str
-    returns: str
     params: tuple[str, ...]
     #: what the skeleton does not use yet
     param_names: tuple[str, ...]
     #: one parameter a line, when one line would be too long for cpplint
     wrap: bool
-    code: str | None
-    description: str
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -70,15 +61,11 @@ class CppParameterGroup(GroupClass):
         return [f'{member}(node)' for member, _ in self.groups] + ['node_(node)']
 
 
-@dataclass(frozen=True)
-class CppActivity:
+@dataclass(frozen=True, kw_only=True)
+class CppActivity(SpelledActivity):
     """An activity: its callback group, lock and, if periodic, its timer."""
 
-    name: str
-    period: float | None
     period_ns: int | None
-    functions: tuple[str, ...]
-    description: str
 
 
 @dataclass(frozen=True)

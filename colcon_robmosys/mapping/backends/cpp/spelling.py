@@ -206,9 +206,9 @@ def _function(cls: str, function: FunctionPlan) -> CppFunction:
 
 
 def _activity(activity: ActivityPlan) -> CppActivity:
-    return CppActivity(activity.name, activity.period, activity.period_ns,
-                       activity.functions,
-                       activity.description or f'The activity {activity.name}.')
+    return CppActivity(name=activity.name, period=activity.period, period_ns=activity.period_ns,
+                       functions=activity.functions,
+                       description=activity.description or f'The activity {activity.name}.')
 
 
 def _includes(plan: ComponentPlan, has_rules: bool) -> CppIncludes:

@@ -8,39 +8,30 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from colcon_robmosys.mapping.context import ComponentContext, GroupClass, SpelledParameter
+from colcon_robmosys.mapping.context import (
+    ComponentContext, GroupClass, SpelledActivity, SpelledFunction, SpelledParameter, SpelledPort)
 
 
-@dataclass(frozen=True)
-class PyPort:
+@dataclass(frozen=True, kw_only=True)
+class PyPort(SpelledPort):
     """A port as the Python node creates it."""
 
-    name: str
-    description: str
-    entity: str
-    type: str
     type_full: str
     #: the QoS profile expression, for ports that use a topic
     qos: str | None
     qos_const: str
-    activity: str | None
-    functions: tuple[str, ...]
     #: the ComponentNode method that creates it
     method: str
     #: what its activity runs: a method, or a list of them
     run: str
 
 
-@dataclass(frozen=True)
-class PyFunction:
+@dataclass(frozen=True, kw_only=True)
+class PyFunction(SpelledFunction):
     """A function of the model as a method."""
 
-    name: str
     args: tuple[str, ...]
-    code: str | None
-    returns: str
     default_return: str
-    description: str
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -58,14 +49,10 @@ class PyParameter(SpelledParameter):
     read_only: bool
 
 
-@dataclass(frozen=True)
-class PyActivity:
+@dataclass(frozen=True, kw_only=True)
+class PyActivity(SpelledActivity):
     """A periodic activity and its timer."""
 
-    name: str
-    period: float | None
-    functions: tuple[str, ...]
-    description: str
     #: the list of methods it runs
     run: str
 

@@ -321,8 +321,8 @@ def spell_python(component: Component, plan: ComponentPlan,
         impl_imports=import_lines(impl_modules),
         ports=ports,
         activities=tuple(PyActivity(
-            a.name, a.period, a.functions, a.description,
-            methods(a.functions, 8, len(f'self.add_periodic({a.name!r}, {a.period}, ')))
+            name=a.name, period=a.period, functions=a.functions, description=a.description,
+            run=methods(a.functions, 8, len(f'self.add_periodic({a.name!r}, {a.period}, ')))
                          for a in plan.activities if a.period is not None),
         activity_names=tuple(a.name for a in plan.activities),
         functions=functions, user_functions=user_functions,
