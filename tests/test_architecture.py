@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import ast
 from pathlib import Path
+import re
 
 import pytest
 
@@ -157,3 +158,131 @@ def test_templates_are_small():
         if lines > MAX_TEMPLATE_LINES:
             big[name] = lines
     assert big == {}
+
+
+#: Where a module may ask which language a component is: the language
+#: backends; and the model, where it checks the Python code a model embeds
+#: as it builds the model (the model layer imports no backend).
+LANGUAGE_BACKENDS = PACKAGE / 'mapping' / 'backends'
+LANGUAGE_MODULES = (PACKAGE / 'model' / 'build_components.py',)
+#: The names of the languages, as the model spells them.
+LANGUAGE_NAMES = frozenset({'cpp', 'python'})
+
+
+#: Suffixes of the languages' files: a switch on them stands for a language.
+LANGUAGE_SUFFIXES = frozenset({'.cpp', '.h', '.hpp', '.py'})
+
+
+def _language_tests(tree: ast.AST) -> list[int]:
+    """Return the lines where code asks for a particular language.
+
+    ``Language.CPP``, a comparison with ``'cpp'`` or ``'python'``, or with a
+    suffix of a language's files.
+    """
+    lines = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Attribute) and node.attr in ('CPP', 'PYTHON') and \
+                isinstance(node.value, ast.Name) and node.value.id == 'Language':
+            lines.append(node.lineno)
+        elif isinstance(node, ast.Compare) and any(
+                isinstance(o, ast.Constant) and o.value in LANGUAGE_NAMES | LANGUAGE_SUFFIXES
+                or isinstance(o, ast.Tuple) and any(
+                    isinstance(e, ast.Constant) and e.value in LANGUAGE_SUFFIXES
+                    for e in o.elts)
+                for o in [node.left, *node.comparators]):
+            lines.append(node.lineno)
+    return sorted(set(lines))
+
+
+def test_only_the_backends_ask_for_a_language():
+    """A language is one backend (mapping/backends/): nothing else asks for one."""
+    asking = [f'{path.relative_to(REPO)}:{line}' for path in _sources(PACKAGE)
+              if RUNTIME_PACKAGE not in path.parents and
+              LANGUAGE_BACKENDS not in path.parents and path not in LANGUAGE_MODULES
+              for line in _language_tests(ast.parse(path.read_text(encoding='utf-8')))]
+    assert asking == []
+
+
+#: A template that compares a value with a language's name.
+TEMPLATE_LANGUAGE_TEST = re.compile(r"""(==|!=|\bis)\s*['"](cpp|python)['"]""")
+
+
+def test_only_the_backends_templates_know_a_language():
+    """The shared templates take what differs from the backend's (starter: its fragments)."""
+    asking = [f'{path.relative_to(REPO)}:{number}'
+              for path in sorted((REPO / 'templates').rglob('*.jinja'))
+              if not path.parent.name.startswith('component_')
+              for number, line in enumerate(path.read_text(encoding='utf-8').splitlines(), 1)
+              if TEMPLATE_LANGUAGE_TEST.search(line)]
+    assert asking == []
+    assert TEMPLATE_LANGUAGE_TEST.search("{% set python = language == 'python' %}")
+
+
+def test_the_language_test_finds_what_it_looks_for():
+    tree = ast.parse('if component.language is Language.CPP:\n    pass\n'
+                     "if outline.language == 'python':\n    pass\n"
+                     "x = 'cpp' if compiled else 'python'\n"
+                     "if path.suffix in ('.hpp', '.h'):\n    pass\n")
+    assert _language_tests(tree) == [1, 3, 6]
+
+
+#: Where a path docs/architecture.md names may lie: the package's folders are
+#: named without ``colcon_robmosys/``, templates at times without ``templates/``.
+DOC_ROOTS = (REPO, PACKAGE, REPO / 'templates')
+#: Suffixes of the files a document names.
+DOC_SUFFIXES = ('.py', '.jinja', '.json', '.md', '.cfg')
+
+
+def _expand(pattern: str) -> list[str]:
+    """Return a path of a document as globs: ``<name>`` is any, ``{a,b}`` either."""
+    pattern = re.sub(r'<[^>]+>', '*', pattern)
+    match = re.search(r'\{([^}]*)\}', pattern)
+    if match is None:
+        return [pattern]
+    return [expanded for option in match[1].split(',')
+            for expanded in _expand(pattern[:match.start()] + option + pattern[match.end():])]
+
+
+def _named_paths(text: str) -> list[str]:
+    """Return what a document names in backquotes that is a path of the repository.
+
+    A name with a slash counts when its first folder is one of the
+    repository or the package (``pkg/msg/Name`` is no path); a file name
+    without one when it has a suffix of ours, found anywhere below the
+    package or the templates (``graph.py`` of the importer's row).
+    """
+    found = []
+    for name in re.findall(r'`([^`\s]+)`', text):
+        first = name.split('/')[0]
+        if '/' in name:
+            if any(glob_exists(root, first) for root in DOC_ROOTS):
+                found.append(name)
+        elif name.endswith(DOC_SUFFIXES):
+            found.append('**/' + name)
+    return found
+
+
+def _missing(named: list[str]) -> list[str]:
+    """Return the paths of a document that exist nowhere."""
+    return [name for name in named
+            if not any(glob_exists(root, name) for root in
+                       (DOC_ROOTS[1:] if name.startswith('**/') else DOC_ROOTS))]
+
+
+def glob_exists(root: Path, pattern: str) -> bool:
+    """Tell whether a path pattern of a document matches below a root."""
+    return any(next(iter(root.glob(p.rstrip('/'))), None) is not None
+               for p in _expand(pattern))
+
+
+def test_every_path_the_architecture_names_exists():
+    text = (REPO / 'docs' / 'architecture.md').read_text(encoding='utf-8')
+    named = _named_paths(text)
+    assert 'mapping/portkinds.py' in named and '**/graph.py' in named
+    assert _missing(named) == []
+
+
+def test_a_path_of_a_document_is_a_glob():
+    assert _expand('generators/{cpp,python}.py') == ['generators/cpp.py', 'generators/python.py']
+    assert _expand('templates/component_<language>/') == ['templates/component_*/']
+    assert not glob_exists(REPO, 'templates/component_python/ports/<entity>.jinja')

@@ -23,7 +23,7 @@ import pytest
 
 from colcon_robmosys.devtools import ros_env
 from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
-from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
+from colcon_robmosys.mapping.backends.cpp.spelling import CPP_CLIENT_PACKAGES
 from colcon_robmosys.package_selection.robmosys import missing_prefix_packages
 from conftest import requires_ros
 from harness.launch_files import activate_launch_file, nodes_launch_file, read_launch_file

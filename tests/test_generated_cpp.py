@@ -23,7 +23,7 @@ from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.generators import create_missing_user_files, generate_package
 from colcon_robmosys.generators import plan_package
 from colcon_robmosys.generators.filters import cpp_comment, cpp_str
-from colcon_robmosys.mapping.cpp_parameters import string_lines
+from colcon_robmosys.mapping.backends.cpp.parameters import string_lines
 from colcon_robmosys.model.types import Component, Language
 from conftest import TEST_WORKSPACE
 

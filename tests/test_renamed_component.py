@@ -21,7 +21,7 @@ from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.generators import create_missing_user_files, generate_package
-from colcon_robmosys.generators import PackagePlan, plan_package, StampStore
+from colcon_robmosys.generators import PackageFiles, plan_package, StampStore
 from colcon_robmosys.generators import unchanged_package
 from colcon_robmosys.generators.usercode import orphan_problems
 from conftest import colcon, requires_ros
@@ -179,7 +179,7 @@ def workspace(tmp_path) -> Workspace:
     return Workspace(tmp_path, 'Old', 'pkg', 'python')
 
 
-def _plan(ws: Workspace, index: InterfaceIndex) -> PackagePlan:
+def _plan(ws: Workspace, index: InterfaceIndex) -> PackageFiles:
     result = load_workspace(find_model_files([ws.root / 'src']), index)
     result.raise_errors()
     return plan_package(result.workspace, ws.package)

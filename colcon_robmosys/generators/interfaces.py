@@ -7,9 +7,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from colcon_robmosys.generators.plan import (
-    files_of, FileSpec, PackagePlan, Row)
+from colcon_robmosys.generators.files import files_of, FileSpec, PackageFiles
 from colcon_robmosys.mapping.interfaces import InterfacePackage
+from colcon_robmosys.mapping.tables import Row
 
 #: the template of every interface file (at the path the plan gives)
 INTERFACE_TEMPLATE = 'interfaces/interface.jinja'
@@ -22,11 +22,11 @@ FILES = (
 
 
 def interfaces_package(context: InterfacePackage,
-                       model_dir: Path) -> PackagePlan:
+                       model_dir: Path) -> PackageFiles:
     """Return the files of an interface package."""
     files = tuple(FileSpec(f.path, INTERFACE_TEMPLATE, f)
                   for f in context.files)
-    return PackagePlan(
+    return PackageFiles(
         name=context.package, kind='interfaces', model_dir=model_dir,
         build_depends=context.depends, exec_depends=context.depends,
         files=files + files_of(FILES, context),

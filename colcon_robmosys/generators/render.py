@@ -59,10 +59,15 @@ def variables(context: Any) -> dict[str, Any]:
 
 @lru_cache(maxsize=None)
 def _names(cls: type) -> tuple[str, ...]:
-    """Return the names of the fields and properties of a context class."""
+    """Return the names of the fields and properties of a context class.
+
+    Inherited ones too: a language's context derives from the shared one
+    (:class:`~colcon_robmosys.mapping.context.ComponentContext`).
+    """
     names = [f.name for f in fields(cls)]
-    names += [name for name, value in vars(cls).items()
-              if isinstance(value, property)]
+    for base in reversed(cls.__mro__):
+        names += [name for name, value in vars(base).items()
+                  if isinstance(value, property) and name not in names]
     return tuple(names)
 
 

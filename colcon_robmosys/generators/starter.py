@@ -16,6 +16,7 @@ from typing import Any, Iterable, Sequence
 from colcon_robmosys.check.qos import qos_incompatibility
 from colcon_robmosys.generators.filters import yaml_value
 from colcon_robmosys.generators.render import render
+from colcon_robmosys.mapping.backends import backend
 from colcon_robmosys.model.names import identifier_problem, package_problem
 from colcon_robmosys.model.schema import schema
 from colcon_robmosys.model.types import (
@@ -67,6 +68,8 @@ class StarterComponent:
     info: StarterInfo
     name: str
     language: str
+    #: what the component says and does in its language (its backend's)
+    starter: str
     #: the package of the message the component exchanges
     message_package: str
     message: str
@@ -127,8 +130,8 @@ def starter_component(info: StarterInfo, language: Language,
     """
     package, message, field = DEFAULT_TYPE if interfaces is None else (
         interfaces, STARTER_MESSAGE, STARTER_TEXT_FIELD)
-    return StarterComponent(info, class_name(info.package), language.value, package,
-                            message, field)
+    return StarterComponent(info, class_name(info.package), language.value,
+                            backend(language).starter, package, message, field)
 
 
 def starter_system(info: StarterInfo, components: Sequence[Component]) -> StarterSystem:

@@ -7,10 +7,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from colcon_robmosys.generators.plan import (
-    files_of, FileSpec, PackagePlan, Row)
+from colcon_robmosys.generators.files import files_of, FileSpec, PackageFiles
 from colcon_robmosys.mapping.launch import PARAMS_FILE
 from colcon_robmosys.mapping.system import SystemPackage
+from colcon_robmosys.mapping.tables import Row
 
 #: template -> output path, once per launch file (all instances, then each)
 LAUNCH_FILES = (
@@ -36,12 +36,12 @@ FILES = (
 )
 
 
-def system_package(context: SystemPackage, model_dir: Path) -> PackagePlan:
+def system_package(context: SystemPackage, model_dir: Path) -> PackageFiles:
     """Return the files of a system package."""
     files: tuple[FileSpec, ...] = ()
     for launch in context.launch_files:
         files += files_of(LAUNCH_FILES, launch)
-    return PackagePlan(
+    return PackageFiles(
         name=context.package, kind='system', model_dir=model_dir,
         build_depends=context.depends, exec_depends=context.exec_depends,
         files=files + files_of(FILES, context),

@@ -9,14 +9,13 @@ the component leaves behind (:func:`orphan_problems`).
 
 from __future__ import annotations
 
-import ast
 import os
 from pathlib import Path
 import re
 from typing import Iterable, Iterator, Mapping
 
 from colcon_robmosys.errors import Diagnostic, Location
-from colcon_robmosys.generators.plan import PackagePlan, UserFile
+from colcon_robmosys.generators.files import PackageFiles, UserFile
 from colcon_robmosys.generators.render import render
 
 #: What a build leaves among the user's files: never part of the package.
@@ -45,76 +44,17 @@ def check_user_file(user_file: UserFile, path: Path, skeleton: Path | str = ''
     except (OSError, UnicodeDecodeError) as exc:
         return [Diagnostic(Location(str(path)),
                            f'cannot read the implementation file: {exc}')], False
-    if path.suffix in ('.hpp', '.h'):
-        problems = _cpp_header_problems(user_file, path, text, skeleton)
-    elif path.suffix == '.py':
-        try:
-            tree = ast.parse(text, filename=str(path))
-        except SyntaxError as exc:
-            return [Diagnostic(Location(str(path), exc.lineno or 0,
-                                        exc.offset or 0),
-                               f'Python syntax error: {exc.msg}')], False
-        problems = _python_problems(user_file, path, tree, skeleton)
-    else:
-        problems = []
-    return problems, bool(problems)
+    if user_file.check is None:
+        return [], False
+    return user_file.check(path, text, user_file.required_class,
+                           user_file.required_functions,
+                           _skeleton_hint(user_file, skeleton))
 
 
 def user_file_problems(user_file: UserFile, path: Path,
                        skeleton: Path | str = '') -> list[Diagnostic]:
     """Return what the user's code lacks of what the model asks of it."""
     return check_user_file(user_file, path, skeleton)[0]
-
-
-def _python_problems(user_file: UserFile, path: Path, tree: ast.Module,
-                     skeleton_path: Path | str) -> list[Diagnostic]:
-    classes = [n for n in tree.body if isinstance(n, ast.ClassDef) and
-               n.name == user_file.required_class]
-    skeleton = _skeleton_hint(user_file, skeleton_path)
-    if not classes:
-        return [Diagnostic(Location(str(path), 1, 1),
-                           f"no class '{user_file.required_class}' in the "
-                           f'implementation file; {skeleton}')]
-    cls = classes[0]
-    defined = {n.name for n in cls.body
-               if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef))}
-    return [Diagnostic(Location(str(path), cls.lineno, cls.col_offset + 1),
-                       f"class '{cls.name}' lacks the function '{name}' of "
-                       f'the model; {skeleton}')
-            for name in user_file.required_functions if name not in defined]
-
-
-def _cpp_header_problems(user_file: UserFile, path: Path, text: str,
-                         skeleton_path: Path | str) -> list[Diagnostic]:
-    """Check that a C++ header declares the class and functions of the model.
-
-    A compiler would say so too, but only in the middle of the build and in
-    terms of pure virtual functions; this names the function of the model.
-    Comments, strings and preprocessor lines are blanked out (keeping line
-    and column) so that only declarations count.
-    """
-    code = _CPP_NOISE.sub(lambda m: re.sub(r'[^\n]', ' ', m.group(0)), text)
-    skeleton = _skeleton_hint(user_file, skeleton_path)
-    cls = re.search(rf'\b(?:class|struct)\s+{re.escape(user_file.required_class)}\b'
-                    r'[^;{]*\{', code)
-    if cls is None:
-        return [Diagnostic(Location(str(path), 1, 1),
-                           f"no class '{user_file.required_class}' in the "
-                           f'implementation file; {skeleton}')]
-    line = code.count('\n', 0, cls.start()) + 1
-    column = cls.start() - code.rfind('\n', 0, cls.start())
-    body = code[cls.end():]
-    return [Diagnostic(Location(str(path), line, column),
-                       f"class '{user_file.required_class}' lacks the function "
-                       f"'{name}' of the model; {skeleton}")
-            for name in user_file.required_functions
-            if not re.search(rf'\b{re.escape(name)}\s*\(', body)]
-
-
-#: C++ comments, string and character literals, and preprocessor lines.
-_CPP_NOISE = re.compile(
-    r'//[^\n]*|/\*.*?\*/|"(?:\\.|[^"\\\n])*"|\'(?:\\.|[^\'\\\n])*\'|^[ \t]*#[^\n]*',
-    re.DOTALL | re.MULTILINE)
 
 
 def _user_files_below(folder: Path) -> Iterator[Path]:
@@ -133,21 +73,21 @@ def _user_files_below(folder: Path) -> Iterator[Path]:
                 yield Path(root, name)
 
 
-def user_tree(plan: PackagePlan) -> dict[str, tuple[bytes, bool]]:
+def user_tree(package: PackageFiles) -> dict[str, tuple[bytes, bool]]:
     """Return the user's files of a package, at their paths next to the model.
 
     :returns: path relative to the model's directory -> content, and
       whether it is executable
     """
     found = {}
-    for folder in plan.user_folders:
-        for path in _user_files_below(plan.model_dir / folder):
-            relative = path.relative_to(plan.model_dir).as_posix()
+    for folder in package.user_folders:
+        for path in _user_files_below(package.model_dir / folder):
+            relative = path.relative_to(package.model_dir).as_posix()
             found[relative] = (path.read_bytes(), os.access(path, os.X_OK))
     return found
 
 
-def merge_conflicts(plan: PackagePlan,
+def merge_conflicts(package: PackageFiles,
                     outputs: Mapping[str, object]) -> list[Diagnostic]:
     """Return an error for each file of the user's that takes a generated name.
 
@@ -155,9 +95,9 @@ def merge_conflicts(plan: PackagePlan,
     package: one of them would replace the other.
     """
     problems = []
-    for folder, generated in plan.merged_folders.items():
-        for path in _user_files_below(plan.model_dir / folder):
-            relative = path.relative_to(plan.model_dir / folder).as_posix()
+    for folder, generated in package.merged_folders.items():
+        for path in _user_files_below(package.model_dir / folder):
+            relative = path.relative_to(package.model_dir / folder).as_posix()
             if f'{generated}/{relative}' in outputs:
                 problems.append(Diagnostic(
                     Location(str(path)),
@@ -171,7 +111,7 @@ def merge_conflicts(plan: PackagePlan,
 _IMPL_NAME = re.compile(r'(?P<cls>[A-Za-z_][A-Za-z0-9_]*)_impl')
 
 
-def orphan_problems(plan: PackagePlan) -> list[Diagnostic]:
+def orphan_problems(package: PackageFiles) -> list[Diagnostic]:
     """Return one error for the implementation files of no component of the model.
 
     Renaming a component in the model leaves its implementation files behind:
@@ -191,10 +131,10 @@ def orphan_problems(plan: PackagePlan) -> list[Diagnostic]:
     changed and the one to change back: the message names the files, and
     the rename to make where the model evidently renamed the component.
     """
-    impl = plan.implementation
+    impl = package.implementation
     if impl is None:
         return []
-    folder = plan.model_dir / impl.folder
+    folder = package.model_dir / impl.folder
     try:
         names = sorted(os.listdir(folder))
     except OSError:
@@ -206,7 +146,8 @@ def orphan_problems(plan: PackagePlan) -> list[Diagnostic]:
         if suffix in impl.suffixes and match and match['cls'] != impl.component:
             groups.setdefault(match['cls'], []).append(folder / name)
     orphans = {cls: sorted(paths, key=lambda p: impl.suffixes.index(p.suffix))
-               for cls, paths in sorted(groups.items()) if _implements(cls, paths)}
+               for cls, paths in sorted(groups.items())
+               if impl.implements(cls, {path: _text(path) for path in paths})}
     if not orphans:
         return []
     paths = [p for group in orphans.values() for p in group]
@@ -214,17 +155,17 @@ def orphan_problems(plan: PackagePlan) -> list[Diagnostic]:
     named = ', '.join(f"'{cls}'" for cls in orphans)
     if len(orphans) == 1:
         message = f'the implementation of a component {named}, which the package ' \
-            f"'{plan.name}' does not have"
+            f"'{package.name}' does not have"
     else:
         message = f'the implementations of components {named}, which the package ' \
-            f"'{plan.name}' does not have"
+            f"'{package.name}' does not have"
     message = f"{', '.join(str(p) for p in paths)}: {message}; "
     new = impl.component
-    if len(orphans) == 1 and plan.user_files:
+    if len(orphans) == 1 and package.user_files:
         old, group = next(iter(orphans.items()))
         suffixes = [p.suffix for p in group]
         message += f"was '{old}' renamed to '{new}'? "
-        own = _own_files(plan)
+        own = _own_files(package)
         if own is None:
             message += f'move what you need of {_names(old, suffixes)} into ' \
                 f'{_names(new, impl.suffixes)}, then delete {it}'
@@ -234,8 +175,8 @@ def orphan_problems(plan: PackagePlan) -> list[Diagnostic]:
             if own:
                 # made by a generation since the rename: nothing of the user's
                 message += f' (over {_names(new, own)}, made from the model since)'
-    elif plan.user_files:
-        message += f"the component of '{plan.name}' is '{new}': move what you need " \
+    elif package.user_files:
+        message += f"the component of '{package.name}' is '{new}': move what you need " \
             f'of {it} into {_names(new, impl.suffixes)}, then delete {it}'
     else:
         message += f"its component '{new}' has no function of the user's: delete {it}"
@@ -244,35 +185,20 @@ def orphan_problems(plan: PackagePlan) -> list[Diagnostic]:
     return [Diagnostic(impl.location, message)]
 
 
+def _text(path: Path) -> str | None:
+    """Return the text of a file, None if it cannot be read as UTF-8."""
+    try:
+        return path.read_text(encoding='utf-8')
+    except (OSError, UnicodeDecodeError):
+        return None  # not the code the generator made
+
+
 def _names(cls: str, suffixes: Iterable[str]) -> str:
     """Name the files of a class in short: ``Cls_impl.hpp/.cpp``."""
     return f'{cls}_impl' + '/'.join(suffixes)
 
 
-def _implements(cls: str, paths: list[Path]) -> bool:
-    """Tell whether files hold the implementation of a component ``cls``."""
-    suffixes = {p.suffix for p in paths}
-    for path in paths:
-        try:
-            text = path.read_text(encoding='utf-8')
-        except (OSError, UnicodeDecodeError):
-            continue  # not the code the generator made
-        name = re.escape(f'{cls}_impl')
-        if path.suffix == '.py':
-            found = re.search(rf'^class\s+{name}\s*\([^)]*\b{re.escape(cls)}\b', text,
-                              re.MULTILINE)
-        else:
-            code = _CPP_NOISE.sub(' ', text)
-            found = re.search(rf'\b(?:class|struct)\s+{name}\b[^;{{]*:[^;{{]*'
-                              rf'\b{re.escape(cls)}\b', code)
-            if found is None and path.suffix == '.cpp' and '.hpp' not in suffixes:
-                found = re.search(rf'\b{name}\s*::', code)
-        if found:
-            return True
-    return False
-
-
-def _own_files(plan: PackagePlan) -> list[str] | None:
+def _own_files(package: PackageFiles) -> list[str] | None:
     """Return the component's implementation files that hold nothing of the user's.
 
     :returns: the suffixes of those there as the generator makes them from the
@@ -280,8 +206,8 @@ def _own_files(plan: PackagePlan) -> list[str] | None:
       holds the user's code
     """
     untouched = []
-    for user_file in plan.user_files:
-        path = plan.model_dir / user_file.source_path
+    for user_file in package.user_files:
+        path = package.model_dir / user_file.source_path
         try:
             data = path.read_bytes()
         except FileNotFoundError:

@@ -4,9 +4,9 @@
 """The language-neutral plan of a component: what its lifecycle node holds.
 
 Every decision about what a component becomes in ROS 2 is taken here, from
-the port-kind table (:mod:`colcon_robmosys.mapping.portkinds`), once for both
-languages; :mod:`~colcon_robmosys.mapping.cpp` and
-:mod:`~colcon_robmosys.mapping.python` only spell the plan.
+the port-kind table (:mod:`colcon_robmosys.mapping.portkinds`), once for every
+language; the language backends (:mod:`colcon_robmosys.mapping.backends`) only
+spell the plan.
 """
 
 from __future__ import annotations

@@ -5,8 +5,8 @@
 
 Every layer that needs to know what a port is reads this table: the check
 (which ports may trigger an activity, which need one, which signatures
-clash), the mapping of components and both languages' spelling tables
-(:mod:`colcon_robmosys.mapping.cpp`, :mod:`colcon_robmosys.mapping.python`).
+clash), the mapping of components and every language backend's spelling
+tables (:mod:`colcon_robmosys.mapping.backends`).
 A new communication pattern is one row here.
 """
 

@@ -9,12 +9,11 @@ from dataclasses import dataclass
 import json
 from typing import Any
 
+from colcon_robmosys.mapping.backends import node_start
 from colcon_robmosys.mapping.common import (
-    Banner, banner_of, package_xml, PackageXml, unique)
-from colcon_robmosys.mapping.component import plan_component
+    Banner, banner_of, package_xml, PackageXml, RUNTIME_PACKAGE, unique)
 from colcon_robmosys.mapping.connections import (
     connection_topics, node_fqn, provided_end, system_connections, SystemConnection)
-from colcon_robmosys.mapping.cpp import RUNTIME_PACKAGE
 from colcon_robmosys.mapping.launch import (
     launch_files, LaunchFile, PARAMS_FILE, SystemNode)
 from colcon_robmosys.mapping.names import connection_name
@@ -23,7 +22,7 @@ from colcon_robmosys.mapping.portkinds import port_kind
 from colcon_robmosys.mapping.qos import override_parameters
 from colcon_robmosys.model.parameters import freeze_parameter_value
 from colcon_robmosys.model.types import (
-    Component, Instance, Language, PortRef, Role, System, Workspace)
+    Component, Instance, PortRef, Role, System, Workspace)
 
 
 @dataclass(frozen=True)
@@ -127,6 +126,8 @@ def activation_order(system: System) -> list[Instance]:
 
 def _node(instance: Instance, component: Component,
           topics: dict[tuple[str, str], str]) -> SystemNode:
+    # how a process of several instances creates the node: its language's way
+    start = node_start(component)
     return SystemNode(
         instance=instance.name, package=component.package,
         executable=component.executable_name, name=instance.node_name,
@@ -137,7 +138,7 @@ def _node(instance: Instance, component: Component,
         lifecycle=component.lifecycle_node, after=instance.after,
         fqn=node_fqn(instance), respawn=instance.respawn, timeout=instance.timeout,
         host=instance.host,
-        python_class=_python_class(component), plugin=_plugin(component))
+        python_class=start.python_class, plugin=start.plugin)
 
 
 #: the services and topics of an action, below its name
@@ -164,25 +165,6 @@ def _remappings(instance: Instance, component: Component,
             rules += [(f'{port.node_name}/{part}', f'{target}/{part}')
                       for part in ACTION_PARTS]
     return tuple(rules)
-
-
-def _python_class(component: Component) -> str:
-    """Return module:class of the node a Python component's executable runs.
-
-    A process of several instances creates the nodes with it (robmosys_runtime.container).
-    """
-    if component.external or component.language is not Language.PYTHON:
-        return ''
-    plan = plan_component(component)
-    return f'{plan.package}.{plan.node_module}:{plan.node_cls}'
-
-
-def _plugin(component: Component) -> str:
-    """Return the rclcpp_components plugin a C++ component's package registers."""
-    if component.external or component.language is not Language.CPP:
-        return ''
-    plan = plan_component(component)
-    return f'{plan.package}::{plan.node_cls}'
 
 
 def _parameters(system: System, components: dict[str, Component],

@@ -50,9 +50,10 @@ class PackageOutline:
     #: the packages it needs, as model_dependencies() gives them of the
     #: checked model
     dependencies: tuple[str, ...]
-    #: a C++ component: the pattern and role of its ports decide which
-    #: rclcpp packages it is built with (mapping/portkinds.py)
-    cpp: bool = False
+    #: a component: its language, as the model names it, and the pattern
+    #: and role of its ports, which decide what its language's backend needs
+    #: of the ROS 2 prefix (mapping/backends/)
+    language: str = ''
     ports: tuple[tuple[Pattern, Role], ...] = ()
     #: a system: the packages of its own instances' components, and the
     #: systems it includes (the check stage expands them into instances)
@@ -87,7 +88,7 @@ def _outline(section: str, model: Any) -> PackageOutline:
     name = _expect(model.get('package'), str)
     depends = [_expect(d, str) for d in _expect(model.get('depends', []), list)]
     kind = MODEL_KINDS[section]
-    cpp = False
+    language = ''
     ports: list[tuple[Pattern, Role]] = []
     components: list[str] = []
     subsystems: list[str] = []
@@ -101,7 +102,7 @@ def _outline(section: str, model: Any) -> PackageOutline:
             ports.append((pattern, Role(port.get('role'))))
             depends.append(parse_interface(
                 _expect(port.get('type'), str), PATTERN_INTERFACE[pattern]).package)
-        cpp = _expect(model.get('language'), str) == 'cpp'
+        language = _expect(model.get('language'), str)
     else:
         instances = _expect(model.get('instances', {}), dict)
         components = [
@@ -112,8 +113,8 @@ def _outline(section: str, model: Any) -> PackageOutline:
                         for body in _expect(model.get('subsystems', {}), dict).values())
             if s != name]
         depends += components + subsystems
-    return PackageOutline(name, kind, tuple(dict.fromkeys(depends)), cpp, tuple(ports),
-                          tuple(components), tuple(subsystems))
+    return PackageOutline(name, kind, tuple(dict.fromkeys(depends)), language,
+                          tuple(ports), tuple(components), tuple(subsystems))
 
 
 def with_subsystems(packages: dict[str, PackageOutline]) -> dict[str, PackageOutline]:

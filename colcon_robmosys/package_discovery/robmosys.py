@@ -14,15 +14,14 @@ from colcon_robmosys.check import load_workspace
 from colcon_robmosys.check.cache import CACHE_DIR
 from colcon_robmosys.check.cache import ModelCache
 from colcon_robmosys.errors import print_diagnostics
-from colcon_robmosys.mapping.cpp import cpp_client_packages
-from colcon_robmosys.mapping.cpp import rclcpp_packages
+from colcon_robmosys.mapping.backends import prefix_dependencies
+from colcon_robmosys.mapping.portkinds import port_kind
 from colcon_robmosys.mapping.portkinds import PORT_KINDS
 from colcon_robmosys.model.files import model_dependencies
 from colcon_robmosys.model.outline import NoOutline
 from colcon_robmosys.model.outline import outline_file
 from colcon_robmosys.model.outline import with_subsystems
 from colcon_robmosys.model.types import Component
-from colcon_robmosys.model.types import Language
 from colcon_robmosys.model.types import ServiceDefinition
 from colcon_robmosys.package_identification.robmosys import \
     RobmosysPackageIdentification
@@ -162,7 +161,7 @@ def outlined_descriptors(outlines, shared):
     return {
         _descriptor(model_file, o.name, o.kind, _dependencies(
             o.kind, o.dependencies,
-            rclcpp_packages(PORT_KINDS[p] for p in o.ports) if o.cpp else ()),
+            prefix_dependencies(o.language, (PORT_KINDS[p] for p in o.ports))),
             shared)
         for model_file, packages in outlines.items() for o in packages}
 
@@ -185,18 +184,19 @@ def _has_cycle(graph):
     return done < len(graph)
 
 
-def _dependencies(kind, dependencies, rclcpp=()):
-    """Return a generated package's dependencies: its model's, the runtime, rclcpp.
+def _dependencies(kind, dependencies, prefix=()):
+    """Return a generated package's dependencies: its model's, the runtime, the prefix's.
 
-    :param rclcpp: a C++ component's rclcpp packages, built before it if the
-      workspace builds rclcpp itself; the package selection skips the
-      component where none has them
+    :param prefix: what a component's language needs of the ROS 2 prefix
+      (a C++ component's rclcpp packages), built before it if the workspace
+      builds them itself; the package selection skips the component where
+      none has them
     """
     dependencies = tuple(dependencies)
     if kind in ('component', 'system'):
         # components run on it; systems activate with it
         dependencies += (RUNTIME_PACKAGE, )
-    return dependencies + tuple(rclcpp)
+    return dependencies + tuple(prefix)
 
 
 def checked_descriptors(result, model_files, shared):
@@ -210,9 +210,9 @@ def checked_descriptors(result, model_files, shared):
         descriptors.add(_descriptor(
             model.info.model_file, model.package, kind,
             _dependencies(kind, model_dependencies(model),
-                          cpp_client_packages(model)
-                          if isinstance(model, Component) and
-                          model.language is Language.CPP else ()),
+                          prefix_dependencies(
+                              model.language, (port_kind(p) for p in model.ports))
+                          if isinstance(model, Component) else ()),
             shared))
     generating = {m.info.model_file for m in
                   result.workspace.generated_models}

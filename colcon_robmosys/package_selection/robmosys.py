@@ -2,17 +2,16 @@
 # Licensed under the Apache License, Version 2.0
 
 import os
-from pathlib import Path
 
 from colcon_core.logging import colcon_logger
 from colcon_core.package_selection import PackageSelectionExtensionPoint
 from colcon_core.plugin_system import satisfies_version
 
-from colcon_robmosys.mapping.cpp import CPP_CLIENT_PACKAGES
+from colcon_robmosys.mapping.backends import PREFIX_PACKAGES
 from colcon_robmosys.package_discovery.robmosys import checked_result
-
-#: What a C++ component needs from a prefix and PyPI has not.
-CPP_PREFIX_PACKAGES = CPP_CLIENT_PACKAGES + ('rclcpp_action', )
+from colcon_robmosys.runtime import environ_prefixes
+from colcon_robmosys.runtime import package_markers
+from colcon_robmosys.runtime import search_prefixes
 
 logger = colcon_logger.getChild(__name__)
 
@@ -22,11 +21,13 @@ _BUILDING_VERBS = ('build', 'test')
 
 
 class RobmosysPackageSelection(PackageSelectionExtensionPoint):
-    """Skip C++ components where no prefix provides rclcpp, unless their model has errors.
+    """Skip components that need what no prefix provides, unless their model has errors.
 
-    rclcpp is not on PyPI: a workspace of models still builds everything else
-    on a machine without it, and colcon says which packages it skipped and
-    why, instead of reporting them as finished.
+    What a component needs of the ROS 2 prefix is its language backend's
+    (mapping/backends/): rclcpp for C++. rclcpp is not on PyPI: a
+    workspace of models still builds everything else on a machine without
+    it, and colcon says which packages it skipped and why, instead of
+    reporting them as finished.
     """
 
     # after the selection arguments of the user (colcon-package-selection
@@ -48,7 +49,7 @@ class RobmosysPackageSelection(PackageSelectionExtensionPoint):
             if not decorator.selected or pkg.type != 'robmosys.component':
                 continue
             depends = pkg.get_dependencies(categories=('build', ))
-            needs = [name for name in CPP_PREFIX_PACKAGES
+            needs = [name for name in PREFIX_PACKAGES
                      if name in depends and name not in in_workspace]
             missing = missing_prefix_packages(needs)
             if missing and _has_errors(pkg):
@@ -95,21 +96,9 @@ def missing_prefix_packages(names, dependency_prefixes=(), environ=None):
     its ament index entry or its CMake config file, which is what
     find_package() will look for.
     """
-    # not ament_index_python: it reads os.environ's AMENT_PREFIX_PATH only, and
-    # find_package() also looks in CMAKE_PREFIX_PATH and the dependencies' prefixes
     environ = os.environ if environ is None else environ
-    prefixes = [Path(p) for p in dependency_prefixes]
-    for variable in ('AMENT_PREFIX_PATH', 'CMAKE_PREFIX_PATH'):
-        prefixes += [Path(p) for p in
-                     environ.get(variable, '').split(os.pathsep) if p]
-    missing = []
-    for name in names:
-        share = Path('share')
-        candidates = (
-            share / 'ament_index' / 'resource_index' / 'packages' / name,
-            share / name / 'cmake' / f'{name}Config.cmake',
-            share / name / 'cmake' / f'{name}-config.cmake')
-        if not any((prefix / c).exists()
-                   for prefix in prefixes for c in candidates):
-            missing.append(name)
-    return missing
+    prefixes = list(dependency_prefixes) + \
+        environ_prefixes(environ, 'AMENT_PREFIX_PATH') + \
+        environ_prefixes(environ, 'CMAKE_PREFIX_PATH')
+    return [name for name in names
+            if search_prefixes(prefixes, package_markers(name)) is None]

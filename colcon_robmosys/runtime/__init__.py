@@ -23,6 +23,48 @@ def runtime_source() -> Path:
     return Path(__file__).resolve().parent / RUNTIME_PACKAGE
 
 
+def package_markers(name: str) -> tuple[Path, Path, Path]:
+    """Return what marks a package installed in a prefix, relative to the prefix.
+
+    Its ament index entry, and its CMake config file in both spellings
+    find_package() looks for.
+    """
+    share = Path('share')
+    return (share / 'ament_index' / 'resource_index' / 'packages' / name,
+            share / name / 'cmake' / f'{name}Config.cmake',
+            share / name / 'cmake' / f'{name}-config.cmake')
+
+
+def environ_prefixes(environ: Mapping[str, str], variable: str) -> list[str]:
+    """Return the prefixes of a path list of the environment, in order."""
+    return [entry for entry in environ.get(variable, '').split(os.pathsep) if entry]
+
+
+def search_prefixes(prefixes: Iterable[Path | str], markers: Iterable[Path],
+                    ignored: Iterable[Path] = ()) -> Path | None:
+    """
+    Return the first prefix that holds one of the markers, resolved, or None.
+
+    The one search of install prefixes of the glue: what provides the
+    runtime, and which packages a component needs of the prefix no prefix
+    provides (package_selection). Not ament_index_python: it reads
+    os.environ's AMENT_PREFIX_PATH only, and knows neither CMAKE_PREFIX_PATH,
+    the prefixes of a workspace's dependencies nor prefixes that do not
+    count.
+
+    :param ignored: prefixes at or below these folders do not count
+    """
+    markers = tuple(markers)
+    skipped = [Path(p).resolve() for p in ignored]
+    for entry in prefixes:
+        prefix = Path(entry).resolve()
+        if any(prefix == s or s in prefix.parents for s in skipped):
+            continue
+        if any((prefix / marker).exists() for marker in markers):
+            return prefix
+    return None
+
+
 def installed_runtime(environ: Mapping[str, str] | None = None,
                       ignored: Iterable[Path] = ()) -> Path | None:
     """
@@ -33,23 +75,11 @@ def installed_runtime(environ: Mapping[str, str] | None = None,
     ignored folder do not count (the install folder of the workspace being
     built: its own earlier build of the runtime is no underlay).
     """
-    # not ament_index_python: it reads os.environ's AMENT_PREFIX_PATH only, and
-    # knows neither CMAKE_PREFIX_PATH nor prefixes that do not count
     environ = os.environ if environ is None else environ
-    skipped = [Path(p).resolve() for p in ignored]
-    candidates = {
-        'AMENT_PREFIX_PATH': Path('share', 'ament_index', 'resource_index', 'packages',
-                                  RUNTIME_PACKAGE),
-        'CMAKE_PREFIX_PATH': Path('share', RUNTIME_PACKAGE, 'cmake',
-                                  f'{RUNTIME_PACKAGE}Config.cmake'),
-    }
-    for variable, marker in candidates.items():
-        for entry in environ.get(variable, '').split(os.pathsep):
-            if not entry:
-                continue
-            prefix = Path(entry).resolve()
-            if any(prefix == s or s in prefix.parents for s in skipped):
-                continue
-            if (prefix / marker).is_file():
-                return prefix
+    index_entry, cmake_config, _ = package_markers(RUNTIME_PACKAGE)
+    for variable, marker in (('AMENT_PREFIX_PATH', index_entry),
+                             ('CMAKE_PREFIX_PATH', cmake_config)):
+        found = search_prefixes(environ_prefixes(environ, variable), [marker], ignored)
+        if found is not None:
+            return found
     return None

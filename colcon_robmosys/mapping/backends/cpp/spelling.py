@@ -3,10 +3,6 @@
 
 """How C++ spells a component plan: types, signatures, QoS and includes.
 
-The layout is the reference's (Papyrus for Robotics): ``src-gen/<pkg>/`` holds
-the generated class and main, ``src-skel/<pkg>/`` the regenerated skeleton of
-the implementation, ``src/<pkg>/<Component>_impl.{hpp,cpp}`` (next to
-the model) the user's implementation, which derives from the generated class.
 Headers are ``.hpp`` where the reference has ``.h``: ament_uncrustify reads
 ``.h`` files as C.
 
@@ -17,21 +13,22 @@ Nothing here decides what a port becomes (that is the port-kind table of
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 import re
 import textwrap
 from typing import Iterable
 
-from colcon_robmosys.mapping.common import banner_of, package_xml, unique
+from colcon_robmosys.mapping.backends.cpp.context import (
+    CppActivity, CppComponent, CppFunction, CppIncludes, CppPort)
+from colcon_robmosys.mapping.backends.cpp.parameters import (
+    cpp_parameter, cpp_parameter_groups, PARAMETER_TYPES)
+from colcon_robmosys.mapping.common import RUNTIME_PACKAGE, unique
 from colcon_robmosys.mapping.component import (
     ActivityPlan, ComponentPlan, FunctionPlan, PortPlan)
-from colcon_robmosys.mapping.cpp_context import (
-    CppActivity, CppComponent, CppFunction, CppIncludes, CppPort)
-from colcon_robmosys.mapping.cpp_parameters import (
-    cpp_parameter, cpp_parameter_groups, PARAMETER_TYPES)
-from colcon_robmosys.mapping.parameters import parameter_page
+from colcon_robmosys.mapping.context import component_context
 from colcon_robmosys.mapping.portkinds import Delivery, Entity, port_kind, PortKind, Returns
 from colcon_robmosys.mapping.qos import resolve_qos
-from colcon_robmosys.mapping.userfiles import user_folders, UserFolders
+from colcon_robmosys.mapping.userfiles import UserFolders
 from colcon_robmosys.model.types import Component, InterfaceRef, QoS
 
 #: The ROS 2 packages a C++ component needs in the prefix to build at all.
@@ -49,17 +46,41 @@ def rclcpp_packages(kinds: Iterable[PortKind]) -> tuple[str, ...]:
     return CPP_CLIENT_PACKAGES + (('rclcpp_action',) if uses_actions else ())
 
 
-#: entity -> the type of the member that holds it
-MEMBER_TYPES = {
-    Entity.PUBLISHER: 'rclcpp_lifecycle::LifecyclePublisher<{type}>::SharedPtr',
-    Entity.SUBSCRIPTION: 'rclcpp::Subscription<{type}>::SharedPtr',
-    Entity.SERVICE: 'rclcpp::Service<{type}>::SharedPtr',
-    Entity.CLIENT: 'std::shared_ptr<ports::QueryClient<{type}>>',
-    Entity.ACTION_SERVER: 'rclcpp_action::Server<{type}>::SharedPtr',
-    Entity.ACTION_CLIENT: 'std::shared_ptr<ports::ActionClient<{type}>>',
-    Entity.EVENT_SERVER: 'std::shared_ptr<ports::EventServer<{type}>>',
-    Entity.EVENT_CLIENT: 'std::shared_ptr<ports::EventClient<{type}>>',
-}
+@dataclass(frozen=True)
+class CppEntity:
+    """How the C++ node holds and creates the entity of a port: its row."""
+
+    #: the type of the member that holds it
+    member_type: str
+    #: the fragment of create_ports that creates it (Inputs: port)
+    template: str
+    #: the header of robmosys_runtime its port needs, if any: its member
+    #: type's, or create_action_server's, whose rclcpp_action headers other
+    #: components skip
+    runtime_header: str = ''
+
+
+def _row(entity: Entity, member_type: str, runtime_header: str = '') -> tuple[Entity, CppEntity]:
+    return entity, CppEntity(member_type, f'component_cpp/ports/{entity.value}.jinja',
+                             runtime_header)
+
+
+#: entity -> its row, one per entity
+ENTITIES = dict((
+    _row(Entity.PUBLISHER, 'rclcpp_lifecycle::LifecyclePublisher<{type}>::SharedPtr'),
+    _row(Entity.SUBSCRIPTION, 'rclcpp::Subscription<{type}>::SharedPtr'),
+    _row(Entity.SERVICE, 'rclcpp::Service<{type}>::SharedPtr'),
+    _row(Entity.CLIENT, 'std::shared_ptr<ports::QueryClient<{type}>>',
+         'robmosys_runtime/query_client.hpp'),
+    _row(Entity.ACTION_SERVER, 'rclcpp_action::Server<{type}>::SharedPtr',
+         'robmosys_runtime/action_server.hpp'),
+    _row(Entity.ACTION_CLIENT, 'std::shared_ptr<ports::ActionClient<{type}>>',
+         'robmosys_runtime/action_client.hpp'),
+    _row(Entity.EVENT_SERVER, 'std::shared_ptr<ports::EventServer<{type}>>',
+         'robmosys_runtime/event_server.hpp'),
+    _row(Entity.EVENT_CLIENT, 'std::shared_ptr<ports::EventClient<{type}>>',
+         'robmosys_runtime/event_client.hpp'),
+))
 
 #: what a port delivers -> the parameters of a function it runs
 PARAMETERS = {
@@ -78,19 +99,6 @@ RETURN_TYPES = {
     Returns.RESULT: '{type}::Result', Returns.CONDITION: 'bool',
     Returns.PROBLEM: 'std::string',
 }
-
-#: entity -> the header of robmosys_runtime its port needs (its member type, or
-#: create_action_server, whose rclcpp_action headers other components skip)
-RUNTIME_HEADERS = {
-    Entity.CLIENT: 'robmosys_runtime/query_client.hpp',
-    Entity.ACTION_SERVER: 'robmosys_runtime/action_server.hpp',
-    Entity.ACTION_CLIENT: 'robmosys_runtime/action_client.hpp',
-    Entity.EVENT_SERVER: 'robmosys_runtime/event_server.hpp',
-    Entity.EVENT_CLIENT: 'robmosys_runtime/event_client.hpp',
-}
-
-#: the runtime package: the lifecycle bookkeeping and the ports' classes
-RUNTIME_PACKAGE = 'robmosys_runtime'
 
 
 def header_name(ref: InterfaceRef) -> str:
@@ -144,12 +152,19 @@ def qos_statements(qos: QoS) -> list[str]:
     return lines
 
 
+def _parameters(delivers: Delivery, type_: str, port: str) -> tuple[str, ...]:
+    """Return the parameters of a function a port runs, one a string."""
+    return tuple(p.strip() for p in PARAMETERS[delivers].format(type=type_, port=port).split(', '))
+
+
 def _port(port: PortPlan) -> CppPort:
     type_ = cpp_type(port.type)
     delivers = port.kind.delivers
+    row = ENTITIES[port.kind.entity]
     return CppPort(
         name=port.name, entity=port.entity, type=type_,
-        member_type=MEMBER_TYPES[port.kind.entity].format(type=type_),
+        member_type=row.member_type.format(type=type_), template=row.template,
+        params=_parameters(delivers, type_, port.name) if delivers is not None else (),
         description=port.description,
         # events: the QoS of the feedback topic
         qos=tuple(qos_statements(port.qos)) if port.kind.topic_qos else (),
@@ -170,7 +185,7 @@ def _signature(function: FunctionPlan) -> tuple[str, str]:
         return 'void', ''
     type_ = cpp_type(port.type)
     return (RETURN_TYPES[function.returns].format(type=type_),
-            PARAMETERS[port.kind.delivers].format(type=type_, port=port.name))
+            ', '.join(_parameters(port.kind.delivers, type_, port.name)))
 
 
 def _function(cls: str, function: FunctionPlan) -> CppFunction:
@@ -191,9 +206,9 @@ def _function(cls: str, function: FunctionPlan) -> CppFunction:
 
 
 def _activity(activity: ActivityPlan) -> CppActivity:
-    return CppActivity(activity.name, activity.period, activity.period_ns,
-                       activity.functions,
-                       activity.description or f'The activity {activity.name}.')
+    return CppActivity(name=activity.name, period=activity.period, period_ns=activity.period_ns,
+                       functions=activity.functions,
+                       description=activity.description or f'The activity {activity.name}.')
 
 
 def _includes(plan: ComponentPlan, has_rules: bool) -> CppIncludes:
@@ -207,19 +222,17 @@ def _includes(plan: ComponentPlan, has_rules: bool) -> CppIncludes:
     ros += sorted({header_name(p.type) for p in plan.ports})
     ros += ['robmosys_runtime/component_node.hpp'] + (
         ['robmosys_runtime/parameters.hpp'] if has_rules else []) + sorted(
-        {RUNTIME_HEADERS[e] for e in plan.entities if e in RUNTIME_HEADERS})
+        {ENTITIES[e].runtime_header for e in plan.entities if ENTITIES[e].runtime_header})
     return CppIncludes(tuple(sorted(set(system))), tuple(ros))
 
 
 def spell_cpp(component: Component, plan: ComponentPlan,
-              folders: UserFolders | None = None) -> CppComponent:
+              folders: UserFolders) -> CppComponent:
     """Spell the plan of a C++ component.
 
-    :param folders: where the user's files are (by default, as for the only
-      component of its file)
+    :param folders: where the user's files are
     """
     package, cls = plan.package, plan.cls
-    banner = banner_of(component)
     ports = tuple(_port(p) for p in plan.ports)
     functions = tuple(_function(cls, f) for f in plan.functions)
     activities = tuple(_activity(a) for a in plan.activities)
@@ -229,11 +242,14 @@ def spell_cpp(component: Component, plan: ComponentPlan,
     interfaces = unique(('rcl_interfaces', 'lifecycle_msgs') + plan.depends)
     build_depends = client_packages + (RUNTIME_PACKAGE,) + interfaces
     src = f'src-gen/{package}'
-    return CppComponent(
-        banner=banner, package=package, cls=cls, node_cls=plan.node_cls,
+    return component_context(
+        CppComponent, component, plan, folders,
+        xml={'buildtool': ['ament_cmake'], 'depend': build_depends,
+             'test': ['ament_cmake_cpplint', 'ament_cmake_uncrustify',
+                      'ament_cmake_gtest', 'ament_cmake_pytest']},
         node_header=f'{package}/{plan.node_cls}.hpp',
         description=plan.description or f'The component {cls}.',
-        includes=_includes(plan, any(p.rule_lines for p in parameters)), ports=ports,
+        includes=_includes(plan, any(p.rule for p in parameters)), ports=ports,
         publishers=tuple(p for p in ports if p.entity == Entity.PUBLISHER),
         action_servers=tuple(p for p in ports
                              if p.entity == Entity.ACTION_SERVER),
@@ -243,8 +259,6 @@ def spell_cpp(component: Component, plan: ComponentPlan,
         user_functions=tuple(f for f in functions if f.code is None),
         parameters=parameters,
         parameter_groups=cpp_parameter_groups(plan.parameters, parameters),
-        lifecycle={t: f for t, f in plan.lifecycle if f}, threads=plan.threads,
-        has_impl=plan.has_impl,
         find_packages=build_depends,
         link_targets=tuple(f'{p}::{p}' for p in ('rclcpp', 'rclcpp_lifecycle')) +
         (('rclcpp_action::rclcpp_action',) if plan.uses_actions else ()) +
@@ -253,11 +267,4 @@ def spell_cpp(component: Component, plan: ComponentPlan,
         # the user's sources are compiled where they live (the template
         # finds them): only the generated ones here
         sources=(f'{src}/{cls}.cpp',),
-        prefix_requirements=client_packages,
-        package_xml=package_xml(
-            banner, component.info, buildtool=['ament_cmake'],
-            depend=build_depends,
-            test=['ament_cmake_cpplint', 'ament_cmake_uncrustify',
-                  'ament_cmake_gtest', 'ament_cmake_pytest']),
-        folders=folders or user_folders(component),
-        parameter_page=parameter_page(component, banner))
+        prefix_requirements=client_packages)

@@ -7,9 +7,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from colcon_robmosys.mapping.cpp_context import CppParameter, CppParameterGroup, CppRange
+from colcon_robmosys.mapping.backends.cpp.context import CppParameter, CppParameterGroup
+from colcon_robmosys.mapping.context import group_classes, ParameterRange
 from colcon_robmosys.mapping.literals import cpp_str, split_literal
-from colcon_robmosys.mapping.parameters import group_class_names, parameter_groups
+from colcon_robmosys.mapping.parameters import group_class_names, ParameterGroup
 from colcon_robmosys.model.types import Parameter
 
 #: model type -> (C++ type, ParameterValue accessor)
@@ -66,7 +67,7 @@ def _default_lines(parameter: Parameter, ctype: str) -> list[str]:
             f'{cpp_value(parameter.default, parameter.type)};']
 
 
-def _range(parameter: Parameter) -> CppRange | None:
+def _range(parameter: Parameter) -> ParameterRange | None:
     if parameter.range is None:
         return None
     integer = parameter.type == 'int'
@@ -74,7 +75,7 @@ def _range(parameter: Parameter) -> CppRange | None:
     def cast(value: float) -> str:
         return f'INT64_C({int(value)})' if integer else repr(float(value))
 
-    return CppRange(
+    return ParameterRange(
         'integer_range' if integer else 'floating_point_range',
         'rcl_interfaces::msg::IntegerRange' if integer
         else 'rcl_interfaces::msg::FloatingPointRange',
@@ -93,7 +94,7 @@ def cpp_parameter(parameter: Parameter, cls: str) -> CppParameter:
         doc=parameter.description or f'The parameter {parameter.name}.',
         read_only='true' if parameter.read_only else 'false',
         range=_range(parameter), attr=parameter.path[-1],
-        rule_lines=tuple(_rule_lines(parameter, cls, ctype)))
+        rule=tuple(_rule_lines(parameter, cls, ctype)))
 
 
 def _rule_lines(parameter: Parameter, cls: str, ctype: str) -> list[str]:
@@ -126,12 +127,11 @@ def _rule_lines(parameter: Parameter, cls: str, ctype: str) -> list[str]:
 def cpp_parameter_groups(parameters: tuple[Parameter, ...],
                          spelled: tuple[CppParameter, ...]) -> tuple[CppParameterGroup, ...]:
     """Return the classes of the groups of parameters, a subgroup first, Parameters last."""
-    groups = parameter_groups(parameters)
-    names = {path: f'{name}Group' for path, name in group_class_names(groups, '').items()}
-    names[()] = ''
-    by_name = {p.name: p for p in spelled}
-    return tuple(CppParameterGroup(
-        names[g.path],
-        f'Typed access to the parameters {".".join(g.path)}.*.' if g.path else '',
-        tuple(by_name[p.name] for p in g.parameters),
-        tuple((sub, names[g.path + (sub,)]) for sub in g.groups)) for g in groups)
+    def names(groups: tuple[ParameterGroup, ...]) -> dict[tuple[str, ...], str]:
+        named = {path: f'{name}Group' for path, name in group_class_names(groups, '').items()}
+        named[()] = ''
+        return named
+
+    return group_classes(
+        CppParameterGroup, parameters, {p.name: p for p in spelled}, names,
+        lambda path: f'Typed access to the parameters {".".join(path)}.*.' if path else '')

@@ -10,47 +10,53 @@ Nothing here decides what a port becomes (that is the port-kind table of
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 import textwrap
 from typing import Any, Mapping
 
-from colcon_robmosys.mapping.common import banner_of, package_xml
+from colcon_robmosys.mapping.backends.python.context import (
+    PyActivity, PyComponent, PyFunction, PyParameter, PyPort, PyTransition)
+from colcon_robmosys.mapping.common import RUNTIME_PACKAGE
 from colcon_robmosys.mapping.component import (
     ComponentPlan, FunctionPlan, PortPlan)
-from colcon_robmosys.mapping.parameters import (
-    group_class_names, parameter_groups, parameter_page)
+from colcon_robmosys.mapping.context import (
+    component_context, group_classes, GroupClass, ParameterRange)
+from colcon_robmosys.mapping.parameters import group_class_names
 from colcon_robmosys.mapping.portkinds import Entity, Returns
-from colcon_robmosys.mapping.python_context import (
-    PyActivity, PyComponent, PyFunction, PyParameter, PyParameterGroup, PyPort, PyRange,
-    PyTransition)
 from colcon_robmosys.mapping.qos import resolve_qos
-from colcon_robmosys.mapping.userfiles import user_folders, UserFolders
+from colcon_robmosys.mapping.userfiles import UserFolders
 from colcon_robmosys.model.types import Component, InterfaceRef, Parameter, QoS
 
 _QOS_NAMES = frozenset({'DurabilityPolicy', 'HistoryPolicy', 'LivelinessPolicy',
                         'QoSProfile', 'ReliabilityPolicy'})
 
-#: entity -> the method of robmosys_runtime.ComponentNode that creates it
-RUNTIME_METHODS = {
-    Entity.PUBLISHER: 'add_publisher', Entity.SUBSCRIPTION: 'add_subscription',
-    Entity.SERVICE: 'add_service', Entity.CLIENT: 'add_query_client',
-    Entity.ACTION_SERVER: 'add_action_server', Entity.ACTION_CLIENT: 'add_action_client',
-    Entity.EVENT_SERVER: 'add_event_server', Entity.EVENT_CLIENT: 'add_event_client',
-}
+_QOS = {'rclpy.qos': _QOS_NAMES}
 
-#: entity -> module -> the names its code imports (an empty set: the module)
-IMPORTS: dict[Entity, dict[str, frozenset[str]]] = {
-    Entity.PUBLISHER: {'rclpy.qos': _QOS_NAMES},
-    Entity.SUBSCRIPTION: {'rclpy.qos': _QOS_NAMES},
-    Entity.SERVICE: {},
-    Entity.CLIENT: {},
-    Entity.ACTION_SERVER: {},
-    Entity.ACTION_CLIENT: {},
-    Entity.EVENT_SERVER: {'rclpy.qos': _QOS_NAMES},
-    Entity.EVENT_CLIENT: {'rclpy.qos': _QOS_NAMES},
+
+@dataclass(frozen=True)
+class PyEntity:
+    """How the Python node creates the entity of a port: its row."""
+
+    #: the method of robmosys_runtime.ComponentNode that creates it
+    method: str
+    #: module -> the names its code imports (an empty set: the module)
+    imports: Mapping[str, frozenset[str]] = field(default_factory=dict)
+
+
+#: entity -> its row, one per entity
+ENTITIES = {
+    Entity.PUBLISHER: PyEntity('add_publisher', _QOS),
+    Entity.SUBSCRIPTION: PyEntity('add_subscription', _QOS),
+    Entity.SERVICE: PyEntity('add_service'),
+    Entity.CLIENT: PyEntity('add_query_client'),
+    Entity.ACTION_SERVER: PyEntity('add_action_server'),
+    Entity.ACTION_CLIENT: PyEntity('add_action_client'),
+    Entity.EVENT_SERVER: PyEntity('add_event_server', _QOS),
+    Entity.EVENT_CLIENT: PyEntity('add_event_client', _QOS),
 }
 
 #: packages the code of every component needs at run time
-EXEC_DEPENDS = ('rclpy', 'lifecycle_msgs', 'rcl_interfaces', 'robmosys_runtime')
+EXEC_DEPENDS = ('rclpy', 'lifecycle_msgs', 'rcl_interfaces', RUNTIME_PACKAGE)
 
 #: what a function gives back -> its annotation
 RETURN_TYPES = {
@@ -121,7 +127,7 @@ def _node_imports(names: dict[InterfaceRef, str], plan: ComponentPlan,
                     'IntegerRange' if parameter.type == 'int'
                     else 'FloatingPointRange'})
     for entity in plan.entities:
-        for module, imported in IMPORTS[entity].items():
+        for module, imported in ENTITIES[entity].imports.items():
             _add(modules, module, imported)
     if uses_duration:
         modules['rclpy.duration'] = {'Duration'}
@@ -217,15 +223,15 @@ def _port(port: PortPlan, type_name: str) -> PyPort:
         # query and action ports use the QoS of services and actions
         qos=qos_expression(port.qos) if port.kind.topic_qos else None,
         qos_const=f'QOS_{port.name.upper()}', activity=port.activity,
-        functions=port.functions, method=RUNTIME_METHODS[port.kind.entity], run=run)
+        functions=port.functions, method=ENTITIES[port.kind.entity].method, run=run)
 
 
-def _range(parameter: Parameter) -> PyRange | None:
+def _range(parameter: Parameter) -> ParameterRange | None:
     if parameter.range is None:
         return None
     integer = parameter.type == 'int'
     cast = int if integer else float
-    return PyRange(
+    return ParameterRange(
         'integer_range' if integer else 'floating_point_range',
         'IntegerRange' if integer else 'FloatingPointRange',
         repr(cast(parameter.range.start)), repr(cast(parameter.range.end)),
@@ -263,18 +269,6 @@ def _rule(parameter: Parameter) -> tuple[str, ...]:
     return tuple(args)
 
 
-def _groups(parameters: tuple[Parameter, ...], cls: str,
-            spelled: dict[str, PyParameter]) -> tuple[PyParameterGroup, ...]:
-    groups = parameter_groups(parameters)
-    names = group_class_names(groups, f'{cls}Parameters')
-    return tuple(PyParameterGroup(
-        names[g.path],
-        f'Typed access to the parameters {".".join(g.path)}.* of {cls}.' if g.path
-        else f'Typed access to the current parameter values of {cls}.',
-        tuple(spelled[p.name] for p in g.parameters),
-        tuple((sub, names[g.path + (sub,)]) for sub in g.groups)) for g in groups)
-
-
 def _function(function: FunctionPlan,
               type_names: dict[InterfaceRef, str]) -> PyFunction:
     code = None
@@ -292,11 +286,10 @@ def _function(function: FunctionPlan,
 
 
 def spell_python(component: Component, plan: ComponentPlan,
-                 folders: UserFolders | None = None) -> PyComponent:
+                 folders: UserFolders) -> PyComponent:
     """Spell the plan of a Python component.
 
-    :param folders: where the user's files are (by default, as for the only
-      component of its file)
+    :param folders: where the user's files are
     """
     package, cls = plan.package, plan.cls
     type_names = _python_names([p.type for p in plan.ports])
@@ -314,10 +307,11 @@ def spell_python(component: Component, plan: ComponentPlan,
             _add(impl_modules, f'{ref.package}.{ref.kind.value}',
                  {f'{ref.name}{alias}'})
     exec_depends = EXEC_DEPENDS + plan.depends
-    banner = banner_of(component)
     spelled = {p.name: _parameter(p) for p in plan.parameters}
-    return PyComponent(
-        banner=banner, package=package, cls=cls, node_cls=plan.node_cls,
+    return component_context(
+        PyComponent, component, plan, folders,
+        xml={'buildtool': ['ament_cmake', 'ament_cmake_python'], 'exec_': exec_depends,
+             'test': ['ament_cmake_pytest']},
         node_module=node_module,
         description=_class_doc(cls, plan.description),
         node_imports=_node_imports(type_names, plan, uses_duration),
@@ -327,20 +321,17 @@ def spell_python(component: Component, plan: ComponentPlan,
         impl_imports=import_lines(impl_modules),
         ports=ports,
         activities=tuple(PyActivity(
-            a.name, a.period, a.functions, a.description,
-            methods(a.functions, 8, len(f'self.add_periodic({a.name!r}, {a.period}, ')))
+            name=a.name, period=a.period, functions=a.functions, description=a.description,
+            run=methods(a.functions, 8, len(f'self.add_periodic({a.name!r}, {a.period}, ')))
                          for a in plan.activities if a.period is not None),
         activity_names=tuple(a.name for a in plan.activities),
         functions=functions, user_functions=user_functions,
         parameters=tuple(spelled.values()),
-        parameter_groups=_groups(plan.parameters, cls, spelled),
-        lifecycle=tuple(PyTransition(t, methods(tuple(f), 16, len(repr(t)) + 2))
-                        for t, f in plan.lifecycle if f),
-        has_impl=plan.has_impl, threads=plan.threads,
-        depends=plan.depends, exec_depends=exec_depends,
-        package_xml=package_xml(
-            banner, component.info,
-            buildtool=['ament_cmake', 'ament_cmake_python'],
-            exec_=exec_depends, test=['ament_cmake_pytest']),
-        folders=folders or user_folders(component),
-        parameter_page=parameter_page(component, banner))
+        parameter_groups=group_classes(
+            GroupClass, plan.parameters, spelled,
+            lambda groups: group_class_names(groups, f'{cls}Parameters'),
+            lambda path: f'Typed access to the parameters {".".join(path)}.* of {cls}.'
+            if path else f'Typed access to the current parameter values of {cls}.'),
+        transitions=tuple(PyTransition(t, methods(tuple(f), 16, len(repr(t)) + 2))
+                          for t, f in plan.lifecycle if f),
+        depends=plan.depends, exec_depends=exec_depends)

@@ -1,19 +1,22 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-"""What a generator makes of a mapping plan: files, each from a template.
+"""What a generator makes of a mapping plan: the files of a package, each from a template.
 
 A generator is a table of rows (template -> output path); the variables of
-every template are a typed, frozen context of the mapping.
+every template are a typed, frozen context of the mapping. "Plan" is the
+mapping's word (ComponentPlan, the system's and the interfaces' plans); what
+a generator makes of one is a package's files (:class:`PackageFiles`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 from pathlib import Path, PurePosixPath
-from typing import Any, Mapping
+from typing import Any, Callable, Mapping
 
 from colcon_robmosys.errors import Location
+from colcon_robmosys.mapping.tables import ImplementationCheck, Row, UserRow
 
 
 @dataclass(frozen=True)
@@ -46,6 +49,8 @@ class UserFile:
     required_class: str = ''
     #: the regenerated blueprint, inside the generated package
     skeleton_path: str = ''
+    #: what checks its text against the model (its language's), if anything
+    check: ImplementationCheck | None = None
 
 
 @dataclass(frozen=True)
@@ -65,11 +70,14 @@ class Implementation:
     suffixes: tuple[str, ...]
     #: where the model names the component
     location: Location
+    #: whether files of a class hold what the generator made of a component
+    #: of that name (its language's test, on their texts; None: unreadable)
+    implements: Callable[[str, Mapping[Path, str | None]], bool]
 
 
 @dataclass(frozen=True)
-class PackagePlan:
-    """Everything needed to generate one ROS 2 package."""
+class PackageFiles:
+    """Everything needed to generate one ROS 2 package: its files, and the user's."""
 
     name: str
     #: 'interfaces', 'component' or 'system'
@@ -98,39 +106,6 @@ class PackagePlan:
     def depends(self) -> tuple[str, ...]:
         """Return every package this one depends on, build or run."""
         return tuple(dict.fromkeys(self.build_depends + self.exec_depends))
-
-
-@dataclass(frozen=True)
-class Row:
-    """A row of a generator's table: one template, one output path.
-
-    ``path`` is formatted with the context's attributes (``{package}``,
-    ``{cls}``).
-    """
-
-    path: str
-    template: str
-    #: the attribute of the context that holds the template's context,
-    #: if not the whole context (e.g. ``package_xml``)
-    part: str = ''
-    #: an attribute of the context that must be true for the file to exist
-    when: str = ''
-    executable: bool = False
-    #: render the skeleton flavour of a user file's template
-    skeleton: bool = False
-
-
-@dataclass(frozen=True)
-class UserRow:
-    """A row of a generator's table for a file the user owns."""
-
-    source_path: str
-    template: str
-    skeleton_path: str
-    when: str = ''
-    #: the attribute of the context listing the functions the user writes
-    required_functions: str = ''
-    required_class: str = ''
 
 
 class _Attributes(dict[str, Any]):
@@ -173,12 +148,13 @@ def user_files_of(rows: tuple[UserRow, ...],
                 f.name for f in getattr(context, row.required_functions))
             if row.required_functions else (),
             required_class=_path(row.required_class, context),
-            skeleton_path=_path(row.skeleton_path, context))
+            skeleton_path=_path(row.skeleton_path, context), check=row.check)
         for row in rows if not row.when or getattr(context, row.when))
 
 
-def implementation_of(rows: tuple[UserRow, ...], context: Any,
-                      location: Location) -> Implementation:
+def implementation_of(
+        rows: tuple[UserRow, ...], context: Any, location: Location,
+        implements: Callable[[str, Mapping[Path, str | None]], bool]) -> Implementation:
     """Return how the implementation files of a table's component are named.
 
     Every row is ``<folder>/{cls}_impl<suffix>``; a component without
@@ -186,4 +162,4 @@ def implementation_of(rows: tuple[UserRow, ...], context: Any,
     """
     paths = [PurePosixPath(_path(row.source_path, context)) for row in rows]
     return Implementation(str(paths[0].parent), context.cls,
-                          tuple(p.suffix for p in paths), location)
+                          tuple(p.suffix for p in paths), location, implements)
