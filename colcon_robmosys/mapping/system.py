@@ -67,6 +67,39 @@ class DiagramEdge:
 
 
 @dataclass(frozen=True)
+class WatchedPort:
+    """A port of an instance as the system manager's watch expects it in the ROS graph."""
+
+    port: str
+    #: the entity it becomes (portkinds' Entity value)
+    entity: str
+    #: the ROS 2 name it is on: remapped by a connection, or its own in the node's namespace
+    name: str
+    #: pkg/kind/Type
+    type: str
+    required: bool
+    connected: bool
+    #: seconds between two messages at most: the longest period of the activities of a
+    #: component whose activities are all periodic (a push port it provides); else None
+    period: float | None = None
+    #: the model says it may stay unconnected (instance key ``unconnected``)
+    unconnected: bool = False
+    #: the model says it may stay silent (instance key ``quiet``)
+    quiet: bool = False
+
+
+@dataclass(frozen=True)
+class WatchedInstance:
+    """What the watch compares of an instance: where it is written, its ports and values."""
+
+    instance: str
+    location: str
+    ports: tuple[WatchedPort, ...]
+    #: (name, value, where the model gives the value) of every parameter the model sets
+    parameters: tuple[tuple[str, Any, str], ...]
+
+
+@dataclass(frozen=True)
 class SystemPackage:
     """The plan of a system package."""
 
@@ -87,6 +120,8 @@ class SystemPackage:
     connections: tuple[SystemConnection, ...] = ()
     #: 'per_instance', or 'shared': bringup runs the Python instances of a host in one process
     processes: str = 'per_instance'
+    #: per instance, in model order: what the system manager's watch compares
+    watched: tuple[WatchedInstance, ...] = ()
 
     @property
     def bringup_description(self) -> str:
@@ -100,10 +135,23 @@ class SystemPackage:
             'name': n.name, 'namespace': n.namespace, 'fqn': n.fqn,
             'remappings': [list(r) for r in n.remappings], 'managed': n.activate,
             'after': list(n.after), 'respawn': n.respawn, 'timeout': n.timeout,
-            'host': n.host, 'python_class': n.python_class, 'plugin': n.plugin}
+            'host': n.host, 'python_class': n.python_class, 'plugin': n.plugin,
+            'lifecycle': n.lifecycle}
             for n in self.nodes]
+        watched = {w.instance: w for w in self.watched}
+        for instance in instances:
+            watch = watched.get(instance['instance'])
+            if watch is not None:
+                instance['location'] = watch.location
+                instance['ports'] = [
+                    {'port': p.port, 'entity': p.entity, 'name': p.name, 'type': p.type,
+                     'required': p.required, 'connected': p.connected, 'period': p.period,
+                     'unconnected': p.unconnected, 'quiet': p.quiet} for p in watch.ports]
+                instance['parameters'] = [
+                    {'name': n, 'value': v, 'location': at} for n, v, at in watch.parameters]
         connections = [{'name': c.name, 'entity': c.entity, 'type': c.type,
-                        'from': c.source, 'to': c.target} for c in self.connections]
+                        'from': c.source, 'to': c.target, 'location': c.location}
+                       for c in self.connections]
         return json.dumps({'generated_by': ' '.join(self.banner.lines),
                            'package': self.package, 'params_file': PARAMS_FILE,
                            'processes': self.processes,
@@ -215,6 +263,51 @@ def _parameters(system: System, components: dict[str, Component],
     return tuple(nodes)
 
 
+def _watched(system: System, components: dict[str, Component],
+             topics: dict[tuple[str, str], str]) -> tuple[WatchedInstance, ...]:
+    """Return what the system manager's watch expects of every instance."""
+    watched = []
+    for instance in system.instances:
+        component = components[instance.name]
+        periods = [a.period for a in component.activities]
+        # a component with a triggered activity may publish from it: no period promised
+        period = max(periods) if periods and None not in periods and \
+            not component.external else None
+        ports = []
+        for port in component.ports:
+            kind = port_kind(port)
+            connected = (instance.name, port.name) in topics
+            name = topics.get((instance.name, port.name)) or connection_name(
+                instance.namespace, instance.node_name, port.name, port.node_name)
+            ports.append(WatchedPort(
+                port.name, kind.entity.value, name, str(port.type),
+                port.role is Role.REQUIRED, connected,
+                period if kind.entity.value == 'publisher' and port.role is Role.PROVIDED
+                else None,
+                port.name in instance.unconnected, port.name in instance.quiet))
+        values: dict[str, tuple[Any, str]] = {}
+        for parameter in component.parameters:
+            if parameter.default is not None:
+                values[parameter.name] = (parameter.default, str(instance.location))
+        for (name, value), at in zip(system.parameters, system.parameter_locations):
+            if name in values or name == 'use_sim_time':
+                values[name] = (value, str(at))
+        for (name, value), at in zip(instance.parameters, instance.parameter_locations):
+            values[name] = (value, str(at))
+        types = {p.name: p.type for p in component.parameters}
+        types.update(NODE_PARAMETERS)
+        watched.append(WatchedInstance(
+            instance.name, str(instance.location), tuple(ports),
+            tuple((name, _plain(freeze_parameter_value(types[name], value)), at)
+                  for name, (value, at) in values.items())))
+    return tuple(watched)
+
+
+def _plain(value: Any) -> Any:
+    """Return a parameter value as JSON holds it (lists for tuples)."""
+    return [_plain(v) for v in value] if isinstance(value, tuple) else value
+
+
 def _instances(system: System, components: dict[str, Component]
                ) -> tuple[DiagramInstance, ...]:
     return tuple(
@@ -276,6 +369,7 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
         edges=_edges(system, components, topics),
         connections=system_connections(system, components, topics),
         processes=system.processes,
+        watched=_watched(system, components, topics),
         depends=packages, exec_depends=exec_depends,
         package_xml=package_xml(banner, system.info, buildtool=['ament_cmake'],
                                 exec_=exec_depends,

@@ -58,7 +58,13 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
                 tuple(self.at(ipath + ('parameters', n), key=True)
                       for n, _ in parameters),
                 bool(body.get('respawn', False)), body.get('timeout'),
-                body.get('host', ''), qos=self._qos_overrides(ipath, body)))
+                body.get('host', ''), qos=self._qos_overrides(ipath, body),
+                unconnected=tuple(body.get('unconnected', ())),
+                quiet=tuple(body.get('quiet', ())),
+                watch_locations=tuple(
+                    self.at(ipath + (key, index))
+                    for key in ('unconnected', 'quiet')
+                    for index, _ in enumerate(body.get(key, ())))))
         hosts = {i.host for i in instances if i.host}
         for instance in instances:
             if instance.name.startswith('on_') and instance.name[3:] in hosts:

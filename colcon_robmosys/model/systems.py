@@ -56,6 +56,13 @@ class Instance:
     node: str = ''
     #: the QoS the instance gives its ports in place of the component's
     qos: tuple[QoSOverride, ...] = ()
+    #: required ports meant to stay unconnected: no warning, nothing for the watch to report
+    unconnected: tuple[str, ...] = ()
+    #: push ports that may stay silent while the instance is active (the watch does not
+    #: report their silence)
+    quiet: tuple[str, ...] = ()
+    #: where the instance lists each of ``unconnected``, then of ``quiet``
+    watch_locations: tuple[Location, ...] = ()
 
     @property
     def node_name(self) -> str:

@@ -1,0 +1,424 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""
+The conformance watch: the system manager holds the running system to its model.
+
+Every check period, :class:`Watch` reads the ROS graph once for the names of
+the model (each end's node, type and QoS), keeps the parameter values
+``/parameter_events`` tells, notes when the push ports of periodic activities
+last carried a message (a raw subscription each: no message is deserialized),
+and compares (:func:`robmosys_runtime.conformance.compare`). Each difference
+is reported once when it appears and once when it clears, at the model's
+line. :func:`check_once` does the same once, for ``bringup --check``.
+"""
+
+from __future__ import annotations
+
+import importlib
+import os
+import threading
+import time
+from typing import Any, Callable, Dict, List, Optional, Tuple
+
+from rclpy.node import Node
+from rclpy.qos import (
+    qos_profile_parameter_events, QoSProfile, ReliabilityPolicy)
+from robmosys_runtime.conformance import compare, Difference, Endpoint, Graph, Model, State
+
+#: matches every publisher, delivers the last message only
+_LISTEN = QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT)
+
+
+def interface(name: str) -> Any:
+    """Return the Python class of an interface named ``pkg/kind/Type``."""
+    package, kind, type_name = name.split('/')
+    return getattr(importlib.import_module(f'{package}.{kind}'), type_name)
+
+
+def _fqn(namespace: str, name: str) -> str:
+    return f"{namespace.rstrip('/')}/{name}"
+
+
+def _service_type(dds: str) -> str:
+    """Return pkg/srv/Name of a service's reply topic type (``pkg::srv::dds_::Name_Response_``)."""
+    parts = [p for p in dds.replace('::', '/').split('/') if p and p != 'dds_']
+    if len(parts) < 3:
+        return dds
+    name = parts[-1].rstrip('_')
+    for suffix in ('_Response', '_Request'):
+        if name.endswith(suffix):
+            name = name[:-len(suffix)]
+    return f'{parts[0]}/{parts[1]}/{name}'
+
+
+_FEEDBACK = '/_action/feedback'
+
+
+class GraphReader:
+    """Reads what the ROS graph shows of the names of a model."""
+
+    def __init__(self, node: Node, model: Model) -> None:
+        self._node = node
+        self._model = model
+        self._names = [(name, model.kind(name)) for name in model.ports]
+
+    def read(self) -> Graph:
+        """Return the nodes, and the ends of every modelled name."""
+        node = self._node
+        graph = Graph(nodes=set(node.get_fully_qualified_node_names()),
+                      names_with=self._names_with, names_of_node=self._names_of_node)
+        for name, kind in self._names:
+            if kind == 'topic':
+                graph.endpoints[name] = self._topic_ends(name, 'writer', 'reader')
+            elif kind == 'service':
+                graph.endpoints[name] = self._service_ends(name)
+            else:
+                ends = self._topic_ends(name + _FEEDBACK, 'server', 'client')
+                graph.endpoints[name + _FEEDBACK] = ends
+                graph.endpoints[name] = [
+                    Endpoint(e.node, e.end, e.type[:-len('_FeedbackMessage')]
+                             if e.type.endswith('_FeedbackMessage') else e.type, None)
+                    for e in ends]
+        return graph
+
+    def _topic_ends(self, topic: str, writer: str, reader: str) -> List[Endpoint]:
+        node = self._node
+        return [Endpoint(_fqn(i.node_namespace, i.node_name), end, i.topic_type, i.qos_profile)
+                for end, infos in ((writer, node.get_publishers_info_by_topic(topic)),
+                                   (reader, node.get_subscriptions_info_by_topic(topic)))
+                for i in infos]
+
+    def _service_ends(self, name: str) -> List[Endpoint]:
+        # DDS-based middlewares carry a service as two topics: the server writes
+        # the replies, its clients read them
+        reply = f'rr{name}Reply'
+        node = self._node
+        return [Endpoint(_fqn(i.node_namespace, i.node_name), end,
+                         _service_type(i.topic_type))
+                for end, infos in (
+                    ('server', node.get_publishers_info_by_topic(reply, no_mangle=True)),
+                    ('client', node.get_subscriptions_info_by_topic(reply, no_mangle=True)))
+                for i in infos]
+
+    def _names_with(self, kind: str, end: str, type_name: str) -> List[str]:
+        """Return the names that have such an end, of that type (for a hint)."""
+        node = self._node
+        if kind == 'service':
+            names = [n for n, types in node.get_service_names_and_types()
+                     if type_name in types]
+            return [n for n in names if any(e.end == end for e in self._service_ends(n))]
+        if kind == 'action':
+            feedback = f'{type_name}_FeedbackMessage'
+            names = [n[:-len(_FEEDBACK)] for n, types in node.get_topic_names_and_types()
+                     if n.endswith(_FEEDBACK) and feedback in types]
+            pick = 'server' if end == 'server' else 'client'
+            return [n for n in names if any(
+                e.end == pick for e in self._topic_ends(n + _FEEDBACK, 'server', 'client'))]
+        names = [n for n, types in node.get_topic_names_and_types() if type_name in types]
+        return [n for n in names if any(
+            e.end == end for e in self._topic_ends(n, 'writer', 'reader'))]
+
+    def _names_of_node(self, fqn: str, kind: str, end: str) -> List[Tuple[str, str]]:
+        """Return (name, type) of the ends of a kind a node has (for a hint)."""
+        namespace, _, name = fqn.rpartition('/')
+        node = self._node
+        try:
+            if kind == 'topic':
+                ask = node.get_publisher_names_and_types_by_node if end == 'writer' else \
+                    node.get_subscriber_names_and_types_by_node
+                return [(n, t) for n, types in ask(name, namespace or '/') for t in types]
+            if kind == 'service':
+                ask = node.get_service_names_and_types_by_node if end == 'server' else \
+                    node.get_client_names_and_types_by_node
+                return [(n, t) for n, types in ask(name, namespace or '/') for t in types]
+        except Exception:  # noqa: B902 - the node went away meanwhile: no hint
+            return []
+        return []
+
+
+class Listener:
+    """When each watched name last carried a message, and the parameters nodes tell."""
+
+    def __init__(self, node: Node, model: Model, callback_group: Any = None) -> None:
+        self.heard: Dict[str, float] = {}
+        self.parameters: Dict[str, Dict[str, Any]] = {}
+        self._lock = threading.Lock()
+        names = {p['name']: p['type'] for i in model.instances.values()
+                 for p in i.get('ports', ()) if p.get('period') and not p.get('quiet')}
+        self.names = names
+        for name, type_name in sorted(names.items()):
+            try:
+                msg_type = interface(type_name)
+            except (ImportError, AttributeError, ValueError):
+                continue
+            node.create_subscription(
+                msg_type, name, self._heard_on(name), _LISTEN, raw=True,
+                callback_group=callback_group)
+        from rcl_interfaces.msg import ParameterEvent
+        watched = {i['fqn'] for i in model.instances.values() if i.get('parameters')}
+        self._watched = watched
+        node.create_subscription(ParameterEvent, '/parameter_events', self._on_parameters,
+                                 qos_profile_parameter_events, callback_group=callback_group)
+
+    def _heard_on(self, name: str) -> Callable[[Any], None]:
+        heard = self.heard
+
+        def note(message: Any) -> None:
+            heard[name] = time.monotonic()
+        return note
+
+    def _on_parameters(self, event: Any) -> None:
+        if event.node not in self._watched:
+            return
+        from rclpy.parameter import parameter_value_to_python
+        with self._lock:
+            values = self.parameters.setdefault(event.node, {})
+            for parameter in list(event.new_parameters) + list(event.changed_parameters):
+                values[parameter.name] = parameter_value_to_python(parameter.value)
+
+    def values(self) -> Dict[str, Dict[str, Any]]:
+        """Return a copy of the parameter values seen, by node."""
+        with self._lock:
+            return {n: dict(v) for n, v in self.parameters.items()}
+
+
+class Watch:
+    """
+    The system manager's conformance watch.
+
+    The graph tells of a new endpoint a moment after it is made (discovery),
+    so the ports of an instance are checked from ``grace`` seconds after it
+    became active, and a difference is reported once two checks in a row
+    found it: a false alarm costs more than one check period of delay.
+
+    :param report: called with each difference that appears (True) or clears (False)
+    """
+
+    def __init__(self, node: Node, description: Dict[str, Any], *, period: float,
+                 silence: float,
+                 report: Optional[Callable[[Difference, bool], None]] = None,
+                 grace: Optional[float] = None, confirm: int = 2) -> None:
+        self.period = period
+        self.silence = silence
+        self.grace = max(2 * period, 3.0) if grace is None else grace
+        self.confirm = confirm
+        self._seen: Dict[str, int] = {}
+        self.model = Model(description, own_nodes=[node.get_fully_qualified_name()])
+        self._reader = GraphReader(node, self.model)
+        self._listener = Listener(node, self.model)
+        self._report = report or _say
+        self._up_since: Dict[str, float] = {}
+        #: the differences of the last check, by key
+        self.differences: Dict[str, Difference] = {}
+
+    def check(self, states: Dict[str, str], settled: bool) -> Dict[str, Difference]:
+        """Compare the system with its model once; report what appeared and cleared."""
+        graph = self._reader.read()
+        now = time.monotonic()
+        state = State(parameters=self._listener.values())
+        for name, instance in self.model.instances.items():
+            current = states.get(name, 'starting')
+            if instance['managed']:
+                up = settled and current == 'active'
+                if settled and current not in ('active', 'starting'):
+                    state.wrong_state[name] = f'is {current}, not active'
+            else:
+                # a plain node shows its ports as soon as it runs; a lifecycle node
+                # that the system leaves unconfigured has none to show
+                up = not instance.get('lifecycle', True) and instance['fqn'] in graph.nodes
+            if not up:
+                self._up_since.pop(name, None)
+            else:
+                self._up_since.setdefault(name, now)
+            state.up[name] = up and now - self._up_since[name] >= self.grace
+        state.silent = self.silent(state.up, now)
+        found = compare(self.model, graph, state)
+        self._seen = {key: self._seen.get(key, 0) + 1 for key in found}
+        confirmed = {key: d for key, d in found.items()
+                     if self._seen[key] >= self.confirm or key in self.differences}
+        for key, difference in confirmed.items():
+            if key not in self.differences:
+                self._report(difference, True)
+        for key, difference in self.differences.items():
+            if key not in found:
+                self._report(difference, False)
+        self.differences = confirmed
+        return confirmed
+
+    def silent(self, up: Dict[str, bool], now: float) -> Dict[str, float]:
+        """Return instance.port -> seconds of silence, of the watched ports silent too long."""
+        silent = {}
+        for name, instance in self.model.instances.items():
+            if not up.get(name):
+                continue
+            for port in instance.get('ports', ()):
+                if not port.get('period') or port.get('quiet') or \
+                        port['name'] not in self._listener.names:
+                    continue
+                threshold = max(self.silence * port['period'], 2 * self.period)
+                since = max(self._up_since[name], self._listener.heard.get(port['name'], 0.0))
+                if now - since > threshold:
+                    silent[f"{name}.{port['port']}"] = now - since
+        return silent
+
+    def run(self, stopping: threading.Event, states: Callable[[], Dict[str, str]],
+            settled: Callable[[], bool]) -> None:
+        """Check every period until stopping is set (a thread's target)."""
+        from robmosys_runtime.output import say
+        while not stopping.wait(self.period):
+            try:
+                self.check(states(), settled())
+            except Exception as error:  # noqa: B902 - the watch goes on
+                say('error', f'the conformance watch failed: {type(error).__name__}: {error}')
+
+    def by_subject(self) -> Dict[str, List[Difference]]:
+        """Return the current differences by status (``instance <n>``, ``connection <i>``)."""
+        subjects: Dict[str, List[Difference]] = {}
+        for difference in sorted(self.differences.values(), key=lambda d: d.key):
+            subjects.setdefault(difference.subject, []).append(difference)
+        return subjects
+
+
+def _say(difference: Difference, appeared: bool) -> None:
+    from robmosys_runtime.output import say
+    if appeared:
+        say('info', f'{difference.location}: difference: {difference.message}')
+    else:
+        say('info', f'{difference.location}: cleared: {difference.message}')
+
+
+def check_once(description: Dict[str, Any], *, wait: float = 10.0, silence: float = 5.0,
+               period: float = 1.0) -> List[Difference]:
+    """
+    Compare a running system with its model once; return the differences.
+
+    It waits up to ``wait`` seconds for every node of the model to appear,
+    asks each lifecycle instance its state and each instance the parameters
+    the model sets, and listens to the push ports of periodic activities
+    for ``silence`` of their periods (at most ``wait`` more seconds).
+    """
+    import rclpy
+    from rclpy.executors import MultiThreadedExecutor
+    context = rclpy.Context()
+    rclpy.init(context=context, args=['--ros-args', '--disable-rosout-logs'])
+    node = rclpy.create_node(f"{description['package']}_check_{os.getpid()}",
+                             context=context, start_parameter_services=False)
+    executor = MultiThreadedExecutor(num_threads=2, context=context)
+    executor.add_node(node)
+    spinner = threading.Thread(target=executor.spin, daemon=True)
+    spinner.start()
+    try:
+        watch = Watch(node, description, period=period, silence=silence,
+                      report=lambda d, a: None, grace=0.0, confirm=1)
+        model = watch.model
+        fqns = {i['fqn'] for i in model.instances.values()}
+        deadline = time.monotonic() + wait
+        while time.monotonic() < deadline and \
+                not fqns <= set(node.get_fully_qualified_node_names()):
+            time.sleep(0.1)
+        start = time.monotonic()
+        present = set(node.get_fully_qualified_node_names())
+        states = _states(node, model, present, wait)
+        _read_parameters(node, model, present, watch._listener, wait)
+        periods = [p['period'] for i in model.instances.values() for p in i.get('ports', ())
+                   if p.get('period') and not p.get('quiet')]
+        listen = min(wait, max([silence * p for p in periods] + [0.0]))
+        # listened since the node was made: the window counts from discovery
+        time.sleep(max(0.0, start + listen - time.monotonic()) + 0.2)
+        watch._up_since = {n: start for n in model.instances}
+        watch.period = 0.0
+        return list(watch.check(states, settled=True).values())
+    finally:
+        executor.shutdown()
+        spinner.join(10)
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
+
+
+def _states(node: Node, model: Model, present: Any, timeout: float) -> Dict[str, str]:
+    """Ask each managed instance its lifecycle state."""
+    from lifecycle_msgs.srv import GetState
+    states: Dict[str, str] = {}
+    pending = []
+    for name, instance in model.instances.items():
+        if not instance['managed']:
+            states[name] = 'running'
+            continue
+        if instance['fqn'] not in present:
+            states[name] = 'absent'
+            continue
+        client = node.create_client(GetState, f"{instance['fqn']}/get_state")
+        pending.append((name, client, client.call_async(GetState.Request())
+                        if client.wait_for_service(timeout_sec=timeout) else None))
+    deadline = time.monotonic() + timeout
+    for name, client, future in pending:
+        while future is not None and not future.done() and time.monotonic() < deadline:
+            time.sleep(0.02)
+        if future is not None and future.done() and future.result() is not None:
+            states[name] = future.result().current_state.label
+        else:
+            states[name] = 'unknown (no answer)'
+        node.destroy_client(client)
+    return states
+
+
+def _read_parameters(node: Node, model: Model, present: Any, listener: Listener,
+                     timeout: float) -> None:
+    """Ask each instance the values of the parameters the model sets."""
+    from rcl_interfaces.srv import GetParameters
+    from rclpy.parameter import parameter_value_to_python
+    pending = []
+    for instance in model.instances.values():
+        names = [p['name'] for p in instance.get('parameters', ())]
+        if not names or instance['fqn'] not in present:
+            continue
+        client = node.create_client(GetParameters, f"{instance['fqn']}/get_parameters")
+        if not client.wait_for_service(timeout_sec=timeout):
+            continue
+        pending.append((instance['fqn'], names, client,
+                        client.call_async(GetParameters.Request(names=names))))
+    deadline = time.monotonic() + timeout
+    for fqn, names, client, future in pending:
+        while not future.done() and time.monotonic() < deadline:
+            time.sleep(0.02)
+        answer = future.result() if future.done() else None
+        if answer is not None:
+            values = listener.parameters.setdefault(fqn, {})
+            for name, value in zip(names, answer.values):
+                if value.type:  # 0: not set
+                    values[name] = parameter_value_to_python(value)
+        node.destroy_client(client)
+
+
+def watch_diagnostics(watch: Watch, array: Any) -> None:
+    """
+    Add the differences to the statuses of /diagnostics.
+
+    An instance's status takes those about it (ERROR, each in a value
+    ``difference``, with ``location``); each connection has a status of its
+    own, named ``<system>: <from> -> <to>``, its ROS name the hardware id.
+    """
+    from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
+    model = watch.model
+    subjects = watch.by_subject()
+    by_name = {s.name: s for s in array.status}
+    for name, instance in model.instances.items():
+        status = by_name.get(f'{model.package}: {name}')
+        differences = subjects.get(f'instance {name}', [])
+        if status is None:
+            continue
+        status.values.append(KeyValue(key='location', value=instance.get('location', '')))
+        if differences:
+            status.level = DiagnosticStatus.ERROR
+            status.message = f'{status.message}; {differences[0].message}'
+            status.values += [KeyValue(key='difference', value=d.line()) for d in differences]
+    for index, connection in enumerate(model.connections):
+        differences = subjects.get(f'connection {index}', [])
+        array.status.append(DiagnosticStatus(
+            level=DiagnosticStatus.ERROR if differences else DiagnosticStatus.OK,
+            name=f'{model.package}: {model.connection_label(index)}',
+            message=differences[0].message if differences else 'as the model says',
+            hardware_id=connection['name'],
+            values=[KeyValue(key='location', value=connection.get('location', '')),
+                    KeyValue(key='type', value=connection['type'])] +
+            [KeyValue(key='difference', value=d.line()) for d in differences]))
