@@ -40,7 +40,7 @@ class Endpoint:
     #: writer, reader, server or client
     end: str
     #: pkg/kind/Type
-    type: str
+    type: str  # noqa: A003 - the graph's word
     #: the QoS profile of a topic's end (rclpy's QoSProfile), None for a service
     qos: Any = None
 
@@ -227,6 +227,12 @@ def _compare_name(model: Model, graph: Graph, state: State, name: str,
     subject, where = model.name_subject(name)
     # ends the model does not have
     servers = [e for e in ends if e.end == 'server']
+    modelled_servers = sorted(e.node for e in servers if e.node in model.nodes)
+    if len(servers) > 1 and not modelled_servers:
+        # a name outside the model: one server is what the model's client expects
+        add(f"servers {name} {' '.join(sorted(e.node for e in servers))}", subject, where,
+            f'{name} has {len(servers)} servers, nodes '
+            f"{', '.join(sorted(e.node for e in servers))} (the model expects one)")
     writers_modelled = any(not p['required'] and ENTITIES[p['entity']][1] == 'writer'
                            for _, p in ports)
     for e in ends:
@@ -236,10 +242,10 @@ def _compare_name(model: Model, graph: Graph, state: State, name: str,
             add(f'foreign type {name} {e.node} {e.end}', subject, where,
                 f'{name}: node {e.node} has a {WORDS[e.end]} of type {e.type}, '
                 f"the model's is {modelled_type}")
-        elif e.end == 'server' and len(servers) > 1:
+        elif e.end == 'server' and len(servers) > 1 and modelled_servers:
             add(f'second server {name} {e.node}', subject, where,
-                f'{name} has a second server, node {e.node} (the model has one: '
-                f"{', '.join(sorted(s.node for s in servers if s.node != e.node))})")
+                f"{name} has a second server, node {e.node} (the model's: "
+                f"{', '.join(modelled_servers)})")
         elif e.end == 'writer' and kind == 'topic' and writers_modelled:
             add(f'second writer {name} {e.node}', subject, where,
                 f'{name} has a publisher the model does not have: node {e.node}')

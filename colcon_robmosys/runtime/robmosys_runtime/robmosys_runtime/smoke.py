@@ -11,7 +11,10 @@ checks within a timeout that each connection of the model carries data:
 - a topic (push, send): a message arrives on it;
 - a query: the service answers a request (a default one);
 - an action or an event: its server is there. A goal would make the system
-  do something (move a robot): a smoke test does not send one.
+  do something (move a robot): a smoke test does not send one;
+
+and that the manager's conformance watch finds no difference between the
+running system and its model (``~/conformance``).
 
 Finally it brings the system down with SIGINT, as an operator would, and
 checks that the manager exits 0.
@@ -196,7 +199,27 @@ def _check(node: Node, description: Dict[str, Any], manager: 'subprocess.Popen[b
                 problems.append(f'no answer from {what} within {timeout:g} s')
         elif not probe.server_there(connection['name'], interface(connection['type']), left):
             problems.append(f'no server of {what} within {timeout:g} s')
-    return problems
+    return problems + _conformance(probe, package, timeout)
+
+
+def _conformance(probe: _Probe, package: str, timeout: float) -> List[str]:
+    """
+    Return the differences the manager's watch finds between the system and its model.
+
+    The watch checks the ports of an instance a few seconds after it became
+    active: its answer is asked until it has none, or the timeout passed.
+    """
+    answer: List[Any] = []
+
+    def conforms() -> bool:
+        answer[:] = [probe.call(f'/{package}_bringup/conformance', Trigger, Trigger.Request(),
+                                5.0)]
+        return answer[0] is not None and bool(answer[0].success)
+    if _wait(conforms, timeout, period=1.0):
+        return []
+    if answer[0] is None:
+        return ['the system manager did not answer ~/conformance']
+    return [f'the running system differs from its model:\n{answer[0].message}']
 
 
 def _stop(manager: 'subprocess.Popen[bytes]', timeout: float = 60.0) -> List[str]:

@@ -176,6 +176,13 @@ class Listener:
             for parameter in list(event.new_parameters) + list(event.changed_parameters):
                 values[parameter.name] = parameter_value_to_python(parameter.value)
 
+    def keep(self, node: str, values: Dict[str, Any]) -> None:
+        """Keep values read from a node, unless an event told newer ones meanwhile."""
+        with self._lock:
+            known = self.parameters.setdefault(node, {})
+            for name, value in values.items():
+                known.setdefault(name, value)
+
     def values(self) -> Dict[str, Dict[str, Any]]:
         """Return a copy of the parameter values seen, by node."""
         with self._lock:
@@ -204,7 +211,10 @@ class Watch:
         self.confirm = confirm
         self._seen: Dict[str, int] = {}
         self.model = Model(description, own_nodes=[node.get_fully_qualified_name()])
+        self._node = node
         self._reader = GraphReader(node, self.model)
+        #: instances whose parameters were read since they came up
+        self._read: set = set()
         self._listener = Listener(node, self.model)
         self._report = report or _say
         self._up_since: Dict[str, float] = {}
@@ -228,9 +238,17 @@ class Watch:
                 up = not instance.get('lifecycle', True) and instance['fqn'] in graph.nodes
             if not up:
                 self._up_since.pop(name, None)
+                self._read.discard(name)
             else:
                 self._up_since.setdefault(name, now)
             state.up[name] = up and now - self._up_since[name] >= self.grace
+        # values set before the manager listened: asked once of each instance that came up
+        newly = [n for n, up in state.up.items() if up and n not in self._read]
+        if newly:
+            self._read.update(newly)
+            read_parameters(self._node, [self.model.instances[n] for n in newly],
+                            self._listener, timeout=max(self.period, 1.0))
+            state.parameters = self._listener.values()
         state.silent = self.silent(state.up, now)
         found = compare(self.model, graph, state)
         self._seen = {key: self._seen.get(key, 0) + 1 for key in found}
@@ -319,7 +337,8 @@ def check_once(description: Dict[str, Any], *, wait: float = 10.0, silence: floa
         start = time.monotonic()
         present = set(node.get_fully_qualified_node_names())
         states = _states(node, model, present, wait)
-        _read_parameters(node, model, present, watch._listener, wait)
+        read_parameters(node, [i for i in model.instances.values() if i['fqn'] in present],
+                        watch._listener, wait)
         periods = [p['period'] for i in model.instances.values() for p in i.get('ports', ())
                    if p.get('period') and not p.get('quiet')]
         listen = min(wait, max([silence * p for p in periods] + [0.0]))
@@ -362,18 +381,19 @@ def _states(node: Node, model: Model, present: Any, timeout: float) -> Dict[str,
     return states
 
 
-def _read_parameters(node: Node, model: Model, present: Any, listener: Listener,
-                     timeout: float) -> None:
-    """Ask each instance the values of the parameters the model sets."""
+def read_parameters(node: Node, instances: List[Dict[str, Any]], listener: Listener,
+                    timeout: float) -> None:
+    """Ask instances the values of the parameters the model sets; keep them in listener."""
     from rcl_interfaces.srv import GetParameters
     from rclpy.parameter import parameter_value_to_python
     pending = []
-    for instance in model.instances.values():
+    for instance in instances:
         names = [p['name'] for p in instance.get('parameters', ())]
-        if not names or instance['fqn'] not in present:
+        if not names:
             continue
         client = node.create_client(GetParameters, f"{instance['fqn']}/get_parameters")
         if not client.wait_for_service(timeout_sec=timeout):
+            node.destroy_client(client)
             continue
         pending.append((instance['fqn'], names, client,
                         client.call_async(GetParameters.Request(names=names))))
@@ -383,10 +403,9 @@ def _read_parameters(node: Node, model: Model, present: Any, listener: Listener,
             time.sleep(0.02)
         answer = future.result() if future.done() else None
         if answer is not None:
-            values = listener.parameters.setdefault(fqn, {})
-            for name, value in zip(names, answer.values):
-                if value.type:  # 0: not set
-                    values[name] = parameter_value_to_python(value)
+            listener.keep(fqn, {name: parameter_value_to_python(value)
+                                for name, value in zip(names, answer.values)
+                                if value.type})  # 0: not set
         node.destroy_client(client)
 
 
