@@ -158,7 +158,7 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
 
 def check(description: Dict[str, Any], args: argparse.Namespace) -> int:
     """Compare the running system with its model once; print each difference; 1 if any."""
-    from robmosys_runtime.watch import check_once
+    from robmosys_runtime.check import check_once
     differences = check_once(description, wait=args.check_wait, silence=args.silence)
     for difference in sorted(differences, key=lambda d: (d.location, d.message)):
         print(difference.line(), flush=True)

@@ -9,131 +9,23 @@ the model (each end's node, type and QoS), keeps the parameter values
 last carried a message (a raw subscription each: no message is deserialized),
 and compares (:func:`robmosys_runtime.conformance.compare`). Each difference
 is reported once when it appears and once when it clears, at the model's
-line. :func:`check_once` does the same once, for ``bringup --check``.
+line. :mod:`robmosys_runtime.check` does the same once, for ``bringup --check``.
 """
 
 from __future__ import annotations
 
-import importlib
-import os
 import threading
 import time
-from typing import Any, Callable, Dict, List, Optional, Tuple
+from typing import Any, Callable, Dict, List, Optional
 
 from rclpy.node import Node
 from rclpy.qos import (
     qos_profile_parameter_events, QoSProfile, ReliabilityPolicy)
-from robmosys_runtime.conformance import compare, Difference, Endpoint, Graph, Model, State
+from robmosys_runtime.conformance import compare, Difference, Model, State
+from robmosys_runtime.graph import GraphReader, interface
 
 #: matches every publisher, delivers the last message only
 _LISTEN = QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT)
-
-
-def interface(name: str) -> Any:
-    """Return the Python class of an interface named ``pkg/kind/Type``."""
-    package, kind, type_name = name.split('/')
-    return getattr(importlib.import_module(f'{package}.{kind}'), type_name)
-
-
-def _fqn(namespace: str, name: str) -> str:
-    return f"{namespace.rstrip('/')}/{name}"
-
-
-def _service_type(dds: str) -> str:
-    """Return pkg/srv/Name of a service's reply topic type (``pkg::srv::dds_::Name_Response_``)."""
-    parts = [p for p in dds.replace('::', '/').split('/') if p and p != 'dds_']
-    if len(parts) < 3:
-        return dds
-    name = parts[-1].rstrip('_')
-    for suffix in ('_Response', '_Request'):
-        if name.endswith(suffix):
-            name = name[:-len(suffix)]
-    return f'{parts[0]}/{parts[1]}/{name}'
-
-
-_FEEDBACK = '/_action/feedback'
-
-
-class GraphReader:
-    """Reads what the ROS graph shows of the names of a model."""
-
-    def __init__(self, node: Node, model: Model) -> None:
-        self._node = node
-        self._model = model
-        self._names = [(name, model.kind(name)) for name in model.ports]
-
-    def read(self) -> Graph:
-        """Return the nodes, and the ends of every modelled name."""
-        node = self._node
-        graph = Graph(nodes=set(node.get_fully_qualified_node_names()),
-                      names_with=self._names_with, names_of_node=self._names_of_node)
-        for name, kind in self._names:
-            if kind == 'topic':
-                graph.endpoints[name] = self._topic_ends(name, 'writer', 'reader')
-            elif kind == 'service':
-                graph.endpoints[name] = self._service_ends(name)
-            else:
-                ends = self._topic_ends(name + _FEEDBACK, 'server', 'client')
-                graph.endpoints[name + _FEEDBACK] = ends
-                graph.endpoints[name] = [
-                    Endpoint(e.node, e.end, e.type[:-len('_FeedbackMessage')]
-                             if e.type.endswith('_FeedbackMessage') else e.type, None)
-                    for e in ends]
-        return graph
-
-    def _topic_ends(self, topic: str, writer: str, reader: str) -> List[Endpoint]:
-        node = self._node
-        return [Endpoint(_fqn(i.node_namespace, i.node_name), end, i.topic_type, i.qos_profile)
-                for end, infos in ((writer, node.get_publishers_info_by_topic(topic)),
-                                   (reader, node.get_subscriptions_info_by_topic(topic)))
-                for i in infos]
-
-    def _service_ends(self, name: str) -> List[Endpoint]:
-        # DDS-based middlewares carry a service as two topics: the server writes
-        # the replies, its clients read them
-        reply = f'rr{name}Reply'
-        node = self._node
-        return [Endpoint(_fqn(i.node_namespace, i.node_name), end,
-                         _service_type(i.topic_type))
-                for end, infos in (
-                    ('server', node.get_publishers_info_by_topic(reply, no_mangle=True)),
-                    ('client', node.get_subscriptions_info_by_topic(reply, no_mangle=True)))
-                for i in infos]
-
-    def _names_with(self, kind: str, end: str, type_name: str) -> List[str]:
-        """Return the names that have such an end, of that type (for a hint)."""
-        node = self._node
-        if kind == 'service':
-            names = [n for n, types in node.get_service_names_and_types()
-                     if type_name in types]
-            return [n for n in names if any(e.end == end for e in self._service_ends(n))]
-        if kind == 'action':
-            feedback = f'{type_name}_FeedbackMessage'
-            names = [n[:-len(_FEEDBACK)] for n, types in node.get_topic_names_and_types()
-                     if n.endswith(_FEEDBACK) and feedback in types]
-            pick = 'server' if end == 'server' else 'client'
-            return [n for n in names if any(
-                e.end == pick for e in self._topic_ends(n + _FEEDBACK, 'server', 'client'))]
-        names = [n for n, types in node.get_topic_names_and_types() if type_name in types]
-        return [n for n in names if any(
-            e.end == end for e in self._topic_ends(n, 'writer', 'reader'))]
-
-    def _names_of_node(self, fqn: str, kind: str, end: str) -> List[Tuple[str, str]]:
-        """Return (name, type) of the ends of a kind a node has (for a hint)."""
-        namespace, _, name = fqn.rpartition('/')
-        node = self._node
-        try:
-            if kind == 'topic':
-                ask = node.get_publisher_names_and_types_by_node if end == 'writer' else \
-                    node.get_subscriber_names_and_types_by_node
-                return [(n, t) for n, types in ask(name, namespace or '/') for t in types]
-            if kind == 'service':
-                ask = node.get_service_names_and_types_by_node if end == 'server' else \
-                    node.get_client_names_and_types_by_node
-                return [(n, t) for n, types in ask(name, namespace or '/') for t in types]
-        except Exception:  # noqa: B902 - the node went away meanwhile: no hint
-            return []
-        return []
 
 
 class Listener:
@@ -303,82 +195,6 @@ def _say(difference: Difference, appeared: bool) -> None:
         say('info', f'{difference.location}: difference: {difference.message}')
     else:
         say('info', f'{difference.location}: cleared: {difference.message}')
-
-
-def check_once(description: Dict[str, Any], *, wait: float = 10.0, silence: float = 5.0,
-               period: float = 1.0) -> List[Difference]:
-    """
-    Compare a running system with its model once; return the differences.
-
-    It waits up to ``wait`` seconds for every node of the model to appear,
-    asks each lifecycle instance its state and each instance the parameters
-    the model sets, and listens to the push ports of periodic activities
-    for ``silence`` of their periods (at most ``wait`` more seconds).
-    """
-    import rclpy
-    from rclpy.executors import MultiThreadedExecutor
-    context = rclpy.Context()
-    rclpy.init(context=context, args=['--ros-args', '--disable-rosout-logs'])
-    node = rclpy.create_node(f"{description['package']}_check_{os.getpid()}",
-                             context=context, start_parameter_services=False)
-    executor = MultiThreadedExecutor(num_threads=2, context=context)
-    executor.add_node(node)
-    spinner = threading.Thread(target=executor.spin, daemon=True)
-    spinner.start()
-    try:
-        watch = Watch(node, description, period=period, silence=silence,
-                      report=lambda d, a: None, grace=0.0, confirm=1)
-        model = watch.model
-        fqns = {i['fqn'] for i in model.instances.values()}
-        deadline = time.monotonic() + wait
-        while time.monotonic() < deadline and \
-                not fqns <= set(node.get_fully_qualified_node_names()):
-            time.sleep(0.1)
-        start = time.monotonic()
-        present = set(node.get_fully_qualified_node_names())
-        states = _states(node, model, present, wait)
-        read_parameters(node, [i for i in model.instances.values() if i['fqn'] in present],
-                        watch._listener, wait)
-        periods = [p['period'] for i in model.instances.values() for p in i.get('ports', ())
-                   if p.get('period') and not p.get('quiet')]
-        listen = min(wait, max([silence * p for p in periods] + [0.0]))
-        # listened since the node was made: the window counts from discovery
-        time.sleep(max(0.0, start + listen - time.monotonic()) + 0.2)
-        watch._up_since = {n: start for n in model.instances}
-        watch.period = 0.0
-        return list(watch.check(states, settled=True).values())
-    finally:
-        executor.shutdown()
-        spinner.join(10)
-        node.destroy_node()
-        rclpy.try_shutdown(context=context)
-
-
-def _states(node: Node, model: Model, present: Any, timeout: float) -> Dict[str, str]:
-    """Ask each managed instance its lifecycle state."""
-    from lifecycle_msgs.srv import GetState
-    states: Dict[str, str] = {}
-    pending = []
-    for name, instance in model.instances.items():
-        if not instance['managed']:
-            states[name] = 'running'
-            continue
-        if instance['fqn'] not in present:
-            states[name] = 'absent'
-            continue
-        client = node.create_client(GetState, f"{instance['fqn']}/get_state")
-        pending.append((name, client, client.call_async(GetState.Request())
-                        if client.wait_for_service(timeout_sec=timeout) else None))
-    deadline = time.monotonic() + timeout
-    for name, client, future in pending:
-        while future is not None and not future.done() and time.monotonic() < deadline:
-            time.sleep(0.02)
-        if future is not None and future.done() and future.result() is not None:
-            states[name] = future.result().current_state.label
-        else:
-            states[name] = 'unknown (no answer)'
-        node.destroy_client(client)
-    return states
 
 
 def read_parameters(node: Node, instances: List[Dict[str, Any]], listener: Listener,
