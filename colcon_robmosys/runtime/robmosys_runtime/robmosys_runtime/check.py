@@ -60,6 +60,7 @@ def check_once(description: Dict[str, Any], *, wait: float = 10.0, silence: floa
         # listened since the node was made: the window counts from discovery
         time.sleep(max(0.0, start + listen - time.monotonic()) + 0.2)
         watch._up_since = {n: start for n in model.instances}
+        watch._settled_since = start
         watch.period = 0.0
         return list(watch.check(states, settled=True).values())
     finally:

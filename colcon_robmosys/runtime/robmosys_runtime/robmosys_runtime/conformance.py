@@ -94,6 +94,8 @@ class State:
 
     #: instance -> whether the system is up and the instance should show its ports
     up: Dict[str, bool] = field(default_factory=dict)
+    #: instance -> whether its node should be in the graph now
+    present: Dict[str, bool] = field(default_factory=dict)
     #: instance -> why it is not in the state the model gives it ('' if it is)
     wrong_state: Dict[str, str] = field(default_factory=dict)
     #: node fqn -> parameter -> value seen at run time
@@ -164,7 +166,7 @@ def compare(model: Model, graph: Graph, state: State) -> Dict[str, Difference]:
         if name in state.wrong_state:
             add(f'state {name}', f'instance {name}', where,
                 f'instance {name} {state.wrong_state[name]}')
-        elif state.up.get(name, False) and instance['fqn'] not in graph.nodes:
+        elif state.present.get(name, False) and instance['fqn'] not in graph.nodes:
             add(f'node {name}', f'instance {name}', where,
                 f"instance {name}: node {instance['fqn']} is not in the ROS graph")
     for name in model.ports:
@@ -212,9 +214,8 @@ def _compare_name(model: Model, graph: Graph, state: State, name: str,
         if instance not in up or not port['required'] or port.get('unconnected'):
             continue
         wanted = COUNTERPART[end]
-        providers = [i for i, p in ports if not p['required']]
-        if any(i not in up for i in providers):
-            continue
+        if any(not p['required'] for _, p in ports):
+            continue  # a modelled provider: its own port is reported if it is not there
         if not any(e.end == wanted for e in ends):
             which = f"{instance}.{port['port']}"
             subject, where = model.subject(instance, port['port'])

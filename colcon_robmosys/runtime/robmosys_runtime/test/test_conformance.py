@@ -93,7 +93,6 @@ def test_a_missing_end_and_an_outside_name_with_nothing_there_are_differences():
     messages = sorted(d.line() for d in _compare(graph).values())
     assert messages == [
         'm.yaml:10:9: error: /camera/add has no server; /camera/ad has one, of the same type',
-        'm.yaml:9:9: error: /text has no publisher',
         'm.yaml:9:9: error: port talker.pText: node /talker has no publisher on /text',
     ]
 
@@ -101,7 +100,8 @@ def test_a_missing_end_and_an_outside_name_with_nothing_there_are_differences():
 def test_states_parameters_and_silence_are_differences():
     graph = _graph()
     graph.nodes.discard('/talker')
-    found = _compare(graph, wrong_state={'listener': 'is inactive, not active'},
+    found = _compare(graph, present={'talker': True},
+                     wrong_state={'listener': 'is inactive, not active'},
                      parameters={'/talker': {'rate': 2.5}}, silent={'talker.pText': 1.5})
     messages = sorted(d.line() for d in found.values())
     assert messages == [
