@@ -116,3 +116,21 @@ def test_states_parameters_and_silence_are_differences():
 def test_values_compare_as_parameters_do():
     assert same_value(10, 10.0) and same_value([1, 2], (1, 2)) and same_value('a', 'a')
     assert not same_value(True, 1) and not same_value([1], [1, 2]) and not same_value('a', 'b')
+
+
+def test_a_port_the_model_leaves_unconnected_is_no_difference():
+    graph = _graph()
+    graph.endpoints['/camera/add'] = [Endpoint('/listener', 'client', 'demo/srv/Add')]
+    description = {**DESCRIPTION, 'connections': DESCRIPTION['connections'][:1]}
+    description['instances'] = [dict(i) for i in DESCRIPTION['instances']]
+    listener = description['instances'][1]
+    listener['ports'] = [dict(listener['ports'][0]), dict(
+        listener['ports'][1], connected=False, name='/listener/qAdd')]
+    graph.endpoints['/listener/qAdd'] = graph.endpoints.pop('/camera/add')
+    model = Model(description)
+    state = State(up={'talker': True, 'listener': True})
+    (difference,) = compare(model, graph, state).values()
+    assert difference.line() == 'm.yaml:7:7: error: /listener/qAdd has no server (required ' \
+        'port listener.qAdd is not connected in the model)'
+    listener['ports'][1]['unconnected'] = True
+    assert compare(Model(description), graph, state) == {}
