@@ -43,6 +43,8 @@ class Endpoint:
     type: str  # noqa: A003 - the graph's word
     #: the QoS profile of a topic's end (rclpy's QoSProfile), None for a service
     qos: Any = None
+    #: the endpoint's GID, if the graph gave one: the QoS of two ends is compared once
+    gid: Tuple[int, ...] = ()
 
 
 @dataclass
@@ -74,6 +76,22 @@ class Difference:
     def line(self, severity: str = 'error') -> str:
         """Return the difference as a compiler writes a problem."""
         return f'{self.location}: {severity}: {self.message}'
+
+
+#: (writer GID, reader GID) -> _qos_problem of the two: an endpoint keeps its QoS
+_QOS_PROBLEMS: Dict[Tuple[Tuple[int, ...], Tuple[int, ...]], Optional[str]] = {}
+
+
+def _qos_problem_of(writer: Endpoint, reader: Endpoint) -> Optional[str]:
+    """Return why a writer's QoS cannot reach a reader's, once per pair of endpoints."""
+    if not writer.gid or not reader.gid:
+        return _qos_problem(writer.qos, reader.qos)
+    key = (writer.gid, reader.gid)
+    if key not in _QOS_PROBLEMS:
+        if len(_QOS_PROBLEMS) > 100000:
+            _QOS_PROBLEMS.clear()
+        _QOS_PROBLEMS[key] = _qos_problem(writer.qos, reader.qos)
+    return _QOS_PROBLEMS[key]
 
 
 def _qos_problem(writer: Any, reader: Any) -> Optional[str]:
@@ -256,7 +274,7 @@ def _compare_name(model: Model, graph: Graph, state: State, name: str,
     readers = [e for e in topic_ends if e.end in ('reader', 'client') and e.qos is not None]
     for w in writers:
         for r in readers:
-            problem = _qos_problem(w.qos, r.qos)
+            problem = _qos_problem_of(w, r)
             if problem:
                 add(f'qos {name} {w.node} {r.node}', subject, where,
                     f'{name}: the QoS of the {WORDS[w.end]} of node {w.node} and the '

@@ -71,7 +71,8 @@ class GraphReader:
 
     def _topic_ends(self, topic: str, writer: str, reader: str) -> List[Endpoint]:
         node = self._node
-        return [Endpoint(_fqn(i.node_namespace, i.node_name), end, i.topic_type, i.qos_profile)
+        return [Endpoint(_fqn(i.node_namespace, i.node_name), end, i.topic_type, i.qos_profile,
+                         tuple(i.endpoint_gid))
                 for end, infos in ((writer, node.get_publishers_info_by_topic(topic)),
                                    (reader, node.get_subscriptions_info_by_topic(topic)))
                 for i in infos]
