@@ -27,7 +27,7 @@ from typing import Iterator
 
 import pytest
 
-from colcon_robmosys.devtools.ros_env import background, free_domain_id
+from colcon_robmosys.devtools.ros_env import background, free_domain_id, run as run_command
 from colcon_robmosys.devtools.system import wait_until
 from conftest import BuiltWorkspace, requires_ros
 
@@ -385,3 +385,25 @@ def test_a_misspelt_name_outside_the_model_is_reported_with_the_near_name(
                 check = subprocess.run([sys.executable, str(executable), '--check'], env=env,
                                        capture_output=True, text=True, timeout=60)
                 assert check.returncode == 0, check.stdout + check.stderr
+
+
+def test_the_smoke_test_fails_when_the_system_differs_from_its_model(
+        test_workspace_built, tmp_path):
+    # the model gives the sender another greeting than the one it runs with
+    built = test_workspace_built
+    description = json.loads((built.share('examples_system') / 'bringup.json').read_text())
+    sender = next(i for i in description['instances'] if i['instance'] == 'sender')
+    greeting = next(p for p in sender['parameters'] if p['name'] == 'greeting')
+    greeting['value'] = 'bonjour'
+    path = tmp_path / 'bringup.json'
+    path.write_text(json.dumps(description))
+    script = ('import json, sys; from robmosys_runtime import smoke; print(json.dumps('
+              "smoke.run('examples_system', description_file=sys.argv[1], timeout=10.0)))")
+    result = run_command([sys.executable, '-c', script, str(path)],
+                         env=built.env(free_domain_id()), timeout=300)
+    assert result.returncode == 0, result.stdout + result.stderr
+    problems = json.loads(result.stdout.splitlines()[-1])
+    assert problems[0] == 'the running system differs from its model:\n' + \
+        f"{greeting['location']}: error: parameter greeting of instance sender is " \
+        "'hi there', the model gives 'bonjour'", problems
+    assert len(problems) == 2 and problems[1].startswith('what the system printed:')

@@ -268,9 +268,13 @@ class Manager:
 
     def _conformance(self, request: Any, response: Any) -> Any:
         differences = list(self.watch.differences.values()) if self.watch else []
-        response.success = self.watch is not None and not differences
-        response.message = '\n'.join(sorted(d.line() for d in differences)) if \
-            self.watch else 'the conformance watch is off (--check-period 0)'
+        response.success = self.watch is not None and self.watch.ready and not differences
+        if self.watch is None:
+            response.message = 'the conformance watch is off (--check-period 0)'
+        elif not self.watch.ready:
+            response.message = 'the conformance watch has not compared the whole system yet'
+        else:
+            response.message = '\n'.join(sorted(d.line() for d in differences))
         return response
 
     # instances that end or fall silent

@@ -119,6 +119,8 @@ class Watch:
         self.confirm = confirm
         self._seen: Dict[str, int] = {}
         self._settled_since: Optional[float] = None
+        #: checks in a row that saw the whole system up for longer than the grace
+        self._whole_checks = 0
         self.model = Model(description, own_nodes=[node.get_fully_qualified_name()])
         self._node = node
         self._reader = GraphReader(node, self.model)
@@ -169,6 +171,9 @@ class Watch:
                             self._listener, timeout=max(self.period, 1.0))
             state.parameters = self._listener.values()
         state.silent = self.silent(state.up, now)
+        whole = steady and all(state.up[n] for n, i in self.model.instances.items()
+                               if i['managed'] and states.get(n) == 'active')
+        self._whole_checks = self._whole_checks + 1 if whole else 0
         found = compare(self.model, graph, state)
         self._seen = {key: self._seen.get(key, 0) + 1 for key in found}
         confirmed = {key: d for key, d in found.items()
@@ -181,6 +186,11 @@ class Watch:
                 self._report(difference, False)
         self.differences = confirmed
         return confirmed
+
+    @property
+    def ready(self) -> bool:
+        """Tell whether the last checks compared the whole system, as long as a report takes."""
+        return self._whole_checks >= self.confirm
 
     def silent(self, up: Dict[str, bool], now: float) -> Dict[str, float]:
         """Return instance.port -> seconds of silence, of the watched ports silent too long."""
