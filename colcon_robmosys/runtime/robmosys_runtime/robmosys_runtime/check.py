@@ -82,15 +82,16 @@ def _states(node: Node, model: Model, present: Any, timeout: float) -> Dict[str,
         if instance['fqn'] not in present:
             states[name] = 'absent'
             continue
-        client = node.create_client(GetState, f"{instance['fqn']}/get_state")
+        client: Any = node.create_client(GetState, f"{instance['fqn']}/get_state")
         pending.append((name, client, client.call_async(GetState.Request())
                         if client.wait_for_service(timeout_sec=timeout) else None))
     deadline = time.monotonic() + timeout
     for name, client, future in pending:
         while future is not None and not future.done() and time.monotonic() < deadline:
             time.sleep(0.02)
-        if future is not None and future.done() and future.result() is not None:
-            states[name] = future.result().current_state.label
+        answer = future.result() if future is not None and future.done() else None
+        if answer is not None:
+            states[name] = answer.current_state.label
         else:
             states[name] = 'unknown (no answer)'
         node.destroy_client(client)

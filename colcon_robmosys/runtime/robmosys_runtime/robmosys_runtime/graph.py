@@ -111,6 +111,7 @@ class GraphReader:
         """Return (name, type) of the ends of a kind a node has (for a hint)."""
         namespace, _, name = fqn.rpartition('/')
         node = self._node
+        ask: Any
         try:
             if kind == 'topic':
                 ask = node.get_publisher_names_and_types_by_node if end == 'writer' else \

@@ -244,7 +244,7 @@ def read_parameters(node: Node, instances: List[Dict[str, Any]], listener: Liste
         names = [p['name'] for p in instance.get('parameters', ())]
         if not names:
             continue
-        client = node.create_client(GetParameters, f"{instance['fqn']}/get_parameters")
+        client: Any = node.create_client(GetParameters, f"{instance['fqn']}/get_parameters")
         if not client.wait_for_service(timeout_sec=timeout):
             node.destroy_client(client)
             continue
