@@ -5,8 +5,8 @@
 #               ROS 2 Jazzy, in .venv-jazzy; Kilted is the default
 #   make demo   run tools/demo.py
 #   make clean  remove the venv and the test workspace's build results
-#   make bench  run the five benchmarks of bench/ (or one: make bench-generation,
-#               bench-colcon, bench-runtime, bench-bringup, bench-cppbuild;
+#   make bench  run the six benchmarks of bench/ (or one: make bench-generation,
+#               bench-colcon, bench-runtime, bench-bringup, bench-cppbuild, bench-watch;
 #               BENCH_ARGS='--help' shows their options)
 
 PYTHON ?= python3
@@ -38,7 +38,7 @@ ifeq ($(CI),true)
 PYTEST_FLAGS := -p no:cacheprovider --durations=25
 endif
 
-.PHONY: venv demo test clean bench bench-generation bench-colcon bench-runtime bench-bringup bench-cppbuild
+.PHONY: venv demo test clean bench bench-generation bench-colcon bench-runtime bench-bringup bench-cppbuild bench-watch
 
 venv: $(VENV)/.stamp-package
 
@@ -77,10 +77,10 @@ test: venv
 # Each benchmark prints ratios measured in one run; docs/performance.md keeps the
 # latest figures. bench/ is run as scripts, so the installed package is the one measured.
 BENCH_ARGS ?=
-bench-generation bench-colcon bench-runtime bench-bringup bench-cppbuild: bench-%: venv
+bench-generation bench-colcon bench-runtime bench-bringup bench-cppbuild bench-watch: bench-%: venv
 	$(VPY) bench/bench_$*.py $(BENCH_ARGS)
 
-bench: bench-generation bench-colcon bench-runtime bench-bringup bench-cppbuild
+bench: bench-generation bench-colcon bench-runtime bench-bringup bench-cppbuild bench-watch
 
 clean:
 	rm -rf $(VENV) $(SETUPTOOLS_LEFTOVERS) test_workspace/build test_workspace/install \

@@ -25,6 +25,7 @@ import bench_colcon  # noqa: E402
 import bench_cppbuild  # noqa: E402
 import bench_generation  # noqa: E402
 import bench_runtime  # noqa: E402
+import bench_watch  # noqa: E402
 from colcon_robmosys.check import find_model_files, load_workspace  # noqa: E402
 from colcon_robmosys.check.index import InterfaceIndex  # noqa: E402
 from colcon_robmosys.generators import generate_package  # noqa: E402
@@ -100,6 +101,19 @@ def test_runtime_benchmark_prints_ratios(capsys):
         assert received and int(received.group(1)) >= 2, out
     assert len(re.findall(rf'^\| throughput .* {RATIO} +\|', out, re.MULTILINE)) == 4, out
     assert 'C++: skipped: ' in out
+
+
+@requires_ros
+def test_watch_benchmark_prints_the_cost_of_the_watch(capsys):
+    """The manager's CPU with the watch on and off, and the cost against the goal."""
+    assert bench_watch.main(['--sizes', '2', '--rounds', '1', '--settle', '1',
+                             '--window', '1', '--timeout', '90']) == 0
+    out = capsys.readouterr().out
+    assert len(re.findall(r'round 1, 2 instances, watch .*: \d+\.\d\d % of one CPU',
+                          out)) == 2, out
+    assert re.search(r'^\| 2 +\| \d+\.\d\d +\| \d+\.\d\d +\| -?\d+\.\d\d +\| '
+                     r'(within|above) the goal of 50', out, re.MULTILINE), out
+    assert 'reported a difference' not in out, out
 
 
 @requires_ros

@@ -24,6 +24,7 @@ from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
+from colcon_robmosys.mapping.system import plan_system
 from colcon_robmosys.model.types import (
     Component, Instance, Pattern, PortRef, Role, System, Workspace)
 from conftest import colcon, requires_ros, TEST_WORKSPACE
@@ -372,10 +373,13 @@ def test_respawn_and_timeouts_of_the_model_reach_the_manager_and_the_launch_file
     instances = {i['instance']: i for i in description['instances']}
     assert instances['sender']['respawn'] is True and instances['sender']['timeout'] is None
     assert instances['receiver']['respawn'] is False and instances['receiver']['timeout'] == 2.5
-    # the smoke test's connections: the provided end names it
+    # the smoke test's connections: the provided end names it; the watch names its line
+    line = next(n for n, text in enumerate(model.read_text().splitlines(), 1)
+                if 'from: receiver.sText' in text)
     assert description['connections'] == [{
         'name': '/receiver/sText', 'entity': 'subscription',
-        'type': 'example_msgs/msg/Text', 'from': 'receiver.sText', 'to': 'sender.sText'}]
+        'type': 'example_msgs/msg/Text', 'from': 'receiver.sText', 'to': 'sender.sText',
+        'location': f'{model}:{line}:5'}]
     nodes = {n.name: n for n in read_launch_file(
         out / 'launch' / 'examples_system.nodes.launch.py', out)}
     assert nodes['sender'].extra == {**LAUNCH_EXTRA, 'respawn': True}
@@ -406,3 +410,52 @@ def test_a_system_on_two_hosts_has_launch_files_per_host(tmp_path):
     instances = {i['instance']: i for i in description['instances']}
     assert instances['arm']['host'] == 'robot' and instances['planner']['host'] == ''
     assert instances['arm']['python_class'] == 'single_component.Single:Single'
+
+
+def test_the_description_holds_what_the_conformance_watch_compares(tmp_path):
+    # every port of every instance on its ROS name, the values the model gives (with
+    # their lines), the period a push port of periodic activities promises, and the
+    # connections to names outside the model
+    for name in ('handwritten_system', 'handwritten_nodes'):
+        shutil.copytree(TEST_WORKSPACE / 'src' / name, tmp_path / 'src' / name)
+    model = tmp_path / 'src' / 'handwritten_system' / 'robmosys.yaml'
+    text = model.read_text()
+    out = tmp_path / 'out'
+    generate_package(plan_package(_load(tmp_path / 'src'), 'handwritten_system'), out)
+    description = json.loads((out / 'bringup.json').read_text())
+    lines = text.splitlines()
+
+    def at(fragment: str, column: int) -> str:
+        line = next(n for n, t in enumerate(lines, 1) if fragment in t)
+        return f'{model}:{line}:{column}'
+    instances = {i['instance']: i for i in description['instances']}
+    assert instances['echo']['location'] == at('echo: {component', 7)
+    assert instances['talker']['lifecycle'] is False
+    assert instances['talker']['ports'] == [{
+        'port': 'pChatter', 'entity': 'publisher', 'name': '/talker/pChatter',
+        'type': 'std_msgs/msg/String', 'required': False, 'connected': True, 'period': None,
+        'unconnected': False, 'quiet': False}]
+    assert {p['port']: p['name'] for p in instances['echo']['ports']} == {
+        'rIn': '/outside/words', 'pOut': '/outside/echoes'}
+    outside = [c for c in description['connections'] if not c['to']]
+    assert outside == [
+        {'name': '/outside/words', 'entity': 'subscription', 'type': 'std_msgs/msg/String',
+         'from': 'echo.rIn', 'to': '', 'location': at('{to: echo.rIn', 9)},
+        {'name': '/outside/echoes', 'entity': 'publisher', 'type': 'std_msgs/msg/String',
+         'from': 'echo.pOut', 'to': '', 'location': at('{from: echo.pOut', 9)}]
+
+
+def test_the_description_holds_the_values_and_periods_of_the_model():
+    workspace = _load(TEST_WORKSPACE / 'src')
+    plan = plan_system(_system('dummy_robot_bringup'), workspace)
+    description = json.loads(plan.bringup_description)
+    instances = {i['instance']: i for i in description['instances']}
+    values = {p['name']: p['value'] for p in instances['laser_rear']['parameters']}
+    # the instance's values over the component's defaults
+    assert values == {'frame_id': 'laser_rear', 'samples': 180, 'range_max': 10.0}
+    where = {p['name']: p['location'] for p in instances['laser_rear']['parameters']}
+    assert where['samples'] != where['range_max'] == instances['laser_rear']['location']
+    (scan,) = instances['laser_rear']['ports']
+    # a laser scans every 0.1 s: its scans are watched for silence
+    assert (scan['name'], scan['period'], scan['required']) == ('/dummy_robot/scan', 0.1, False)
+    assert all(p['period'] is None for p in instances['monitor']['ports'])

@@ -13,7 +13,7 @@ from colcon_robmosys.errors import Location
 from colcon_robmosys.mapping.names import connection_name, node_name
 from colcon_robmosys.mapping.portkinds import port_kind
 from colcon_robmosys.model.types import (
-    Component, Connection, Instance, Port, PortRef, Role, System)
+    Component, Connection, Instance, Pattern, Port, PortRef, Role, System)
 
 
 class WiringRules(QoSRules):
@@ -102,11 +102,37 @@ class WiringRules(QoSRules):
         for instance in system.instances:
             component = components.get(instance.name)
             for port in component.ports if component else ():
-                if port.role is Role.REQUIRED and \
+                if port.role is Role.REQUIRED and port.name not in instance.unconnected and \
                         (instance.name, port.name) not in connected:
                     self.warning(system.package, instance.location,
                                  f"required port '{instance.name}."
                                  f"{port.name}' is not connected")
+            if component is not None:
+                self._check_watch_lists(instance, component, connected)
+
+    def _check_watch_lists(self, instance: Instance, component: Component,
+                           connected: set[tuple[str, str]]) -> None:
+        """Check the ports an instance lists as ``unconnected`` and ``quiet``."""
+        listed = [('unconnected', p) for p in instance.unconnected] + \
+            [('quiet', p) for p in instance.quiet]
+        for (key, name), location in zip(listed, instance.watch_locations):
+            port = component.port(name)
+            if port is None:
+                known = ', '.join(p.name for p in component.ports) or 'none'
+                self.error(location, f"'{key}' of instance '{instance.name}': component "
+                           f"'{component.name}' has no port '{name}' (known: {known})")
+            elif key == 'unconnected' and port.role is not Role.REQUIRED:
+                self.error(location, f"'unconnected' of instance '{instance.name}': port "
+                           f"'{name}' is provided (an unconnected provided port is "
+                           'nothing to report)')
+            elif key == 'unconnected' and (instance.name, name) in connected:
+                self.error(location, f"'unconnected' of instance '{instance.name}': port "
+                           f"'{name}' is connected")
+            elif key == 'quiet' and (port.pattern is not Pattern.PUSH or
+                                     port.role is not Role.PROVIDED):
+                self.error(location, f"'quiet' of instance '{instance.name}': port "
+                           f"'{name}' is no provided push port (only those are watched "
+                           'for silence)')
 
     def _in_broken_subsystem(self, system: System, instance: str) -> bool:
         """Tell whether an instance would be one of a subsystem that is reported broken."""

@@ -23,7 +23,10 @@ class SystemConnection:
     #: pkg/kind/Type of the port
     type: str
     source: str
+    #: '' for a connection of one port to a name outside the model
     target: str
+    #: where the model states the connection (``file:line:column``)
+    location: str = ''
 
 
 def node_fqn(instance: Instance) -> str:
@@ -68,19 +71,20 @@ def connection_topics(system: System, components: dict[str, Component]
 
 def system_connections(system: System, components: dict[str, Component],
                        topics: dict[tuple[str, str], str]) -> tuple[SystemConnection, ...]:
-    """Return the connections of a system as its smoke test checks them.
+    """Return the connections of a system, as its smoke test and its watch check them.
 
-    A connection to a name outside the model is not among them: what is at
-    its other end does not run in the test.
+    A connection to a name outside the model has no ``target``: the smoke test
+    leaves it out (what is at its other end does not run in the test), the
+    system manager's watch checks that something is at that end.
     """
     connections = []
     for connection in system.connections:
-        if connection.target is None:
-            continue
         provided = provided_end(connection, components)
         port = components[provided.instance].port(provided.port)
         assert port is not None
         connections.append(SystemConnection(
             topics[(provided.instance, provided.port)], port_kind(port).entity.value,
-            str(port.type), str(connection.source), str(connection.target)))
+            str(port.type), str(connection.source),
+            '' if connection.target is None else str(connection.target),
+            str(connection.location)))
     return tuple(connections)

@@ -12,6 +12,7 @@ from typing import Any
 from colcon_robmosys.mapping.backends import node_start
 from colcon_robmosys.mapping.common import (
     Banner, banner_of, package_xml, PackageXml, RUNTIME_PACKAGE, unique)
+from colcon_robmosys.mapping.conformance import watched_instances, WatchedInstance
 from colcon_robmosys.mapping.connections import (
     connection_topics, node_fqn, provided_end, system_connections, SystemConnection)
 from colcon_robmosys.mapping.launch import (
@@ -86,6 +87,8 @@ class SystemPackage:
     connections: tuple[SystemConnection, ...] = ()
     #: 'per_instance', or 'shared': bringup runs the Python instances of a host in one process
     processes: str = 'per_instance'
+    #: per instance, in model order: what the system manager's watch compares
+    watched: tuple[WatchedInstance, ...] = ()
 
     @property
     def bringup_description(self) -> str:
@@ -94,15 +97,28 @@ class SystemPackage:
         robmosys_runtime.bringup starts them as the launch files do and brings
         the managed ones up in order.
         """
-        instances = [{
+        instances: list[dict[str, Any]] = [{
             'instance': n.instance, 'package': n.package, 'executable': n.executable,
             'name': n.name, 'namespace': n.namespace, 'fqn': n.fqn,
             'remappings': [list(r) for r in n.remappings], 'managed': n.activate,
             'after': list(n.after), 'respawn': n.respawn, 'timeout': n.timeout,
-            'host': n.host, 'python_class': n.python_class, 'plugin': n.plugin}
+            'host': n.host, 'python_class': n.python_class, 'plugin': n.plugin,
+            'lifecycle': n.lifecycle}
             for n in self.nodes]
+        watched = {w.instance: w for w in self.watched}
+        for instance in instances:
+            watch = watched.get(instance['instance'])
+            if watch is not None:
+                instance['location'] = watch.location
+                instance['ports'] = [
+                    {'port': p.port, 'entity': p.entity, 'name': p.name, 'type': p.type,
+                     'required': p.required, 'connected': p.connected, 'period': p.period,
+                     'unconnected': p.unconnected, 'quiet': p.quiet} for p in watch.ports]
+                instance['parameters'] = [
+                    {'name': n, 'value': v, 'location': at} for n, v, at in watch.parameters]
         connections = [{'name': c.name, 'entity': c.entity, 'type': c.type,
-                        'from': c.source, 'to': c.target} for c in self.connections]
+                        'from': c.source, 'to': c.target, 'location': c.location}
+                       for c in self.connections]
         return json.dumps({'generated_by': ' '.join(self.banner.lines),
                            'package': self.package, 'params_file': PARAMS_FILE,
                            'processes': self.processes,
@@ -258,6 +274,7 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
         edges=_edges(system, components, topics),
         connections=system_connections(system, components, topics),
         processes=system.processes,
+        watched=watched_instances(system, components, topics),
         depends=packages, exec_depends=exec_depends,
         package_xml=package_xml(banner, system.info, buildtool=['ament_cmake'],
                                 exec_=exec_depends,

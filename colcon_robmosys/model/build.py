@@ -61,7 +61,12 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
                 bool(body.get('respawn', False)), body.get('timeout'),
                 body.get('host', ''), qos=self._qos_overrides(ipath, body),
                 after_locations=self.at_each(ipath + ('after',), body.get('after', ())),
-                parameter_entry_locations=self._entries(ipath + ('parameters',), parameters)))
+                parameter_entry_locations=self._entries(ipath + ('parameters',), parameters),
+                unconnected=tuple(body.get('unconnected', ())),
+                quiet=tuple(body.get('quiet', ())),
+                watch_locations=(
+                    self.at_each(ipath + ('unconnected',), body.get('unconnected', ())) +
+                    self.at_each(ipath + ('quiet',), body.get('quiet', ())))))
         hosts = {i.host for i in instances if i.host}
         for instance in instances:
             if instance.name.startswith('on_') and instance.name[3:] in hosts:

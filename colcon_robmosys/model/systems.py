@@ -60,6 +60,13 @@ class Instance:
     after_locations: tuple[Location, ...] = ()
     #: where each element of each value of ``parameters`` stands (none for a scalar)
     parameter_entry_locations: tuple[tuple[Location, ...], ...] = ()
+    #: required ports meant to stay unconnected: no warning, nothing for the watch to report
+    unconnected: tuple[str, ...] = ()
+    #: push ports that may stay silent while the instance is active (the watch does not
+    #: report their silence)
+    quiet: tuple[str, ...] = ()
+    #: where the instance lists each of ``unconnected``, then of ``quiet``
+    watch_locations: tuple[Location, ...] = ()
 
     @property
     def node_name(self) -> str:

@@ -66,6 +66,19 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
                         'by default: processes: shared)')
     layout.add_argument('--per-instance', dest='processes', action='store_false',
                         help='run every instance in a process of its own')
+    parser.add_argument('--check-period', type=float, default=1.0, metavar='SECONDS',
+                        help='compare the running system with its model this often, and '
+                        'report each difference when it appears and when it clears (0: off)')
+    parser.add_argument('--silence', type=float, default=5.0, metavar='PERIODS',
+                        help='report a push port of a periodic activity that sent nothing '
+                        'for this many periods of its activity while its instance is active')
+    parser.add_argument('--check', action='store_true',
+                        help='start nothing: compare the system running now with its model '
+                        'once, print each difference at its line of the model, exit 1 if '
+                        'there is one')
+    parser.add_argument('--check-wait', type=float, default=10.0, metavar='SECONDS',
+                        help='with --check: seconds to wait for the nodes of the model, and '
+                        'at most to listen for silent ports')
     parser.add_argument('--description', default=description_file, help=argparse.SUPPRESS)
     # ros2 launch may hand the manager ROS arguments: rclpy reads those
     args = parser.parse_args(without_ros_args(list(sys.argv[1:] if argv is None else argv)))
@@ -75,6 +88,8 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     params_file = os.path.join(get_package_share_directory(package), description['params_file'])
     if args.host:
         return run_host(description, args, params_file)
+    if args.check:
+        return check(description, args)
 
     # The instances start first: importing rclpy and making the manager's node
     # take a third of a second, which they spend starting in parallel. Their
@@ -149,6 +164,15 @@ def not_installed(error: NotInstalled) -> int:
     for problem in error.problems:
         say('error', f'{problem}; nothing was started')
     return 1
+
+
+def check(description: Dict[str, Any], args: argparse.Namespace) -> int:
+    """Compare the running system with its model once; print each difference; 1 if any."""
+    from robmosys_runtime.check import check_once
+    differences = check_once(description, wait=args.check_wait, silence=args.silence)
+    for difference in sorted(differences, key=lambda d: (d.location, d.message)):
+        print(difference.line(), flush=True)
+    return 1 if differences else 0
 
 
 def without_ros_args(argv: Sequence[str]) -> List[str]:

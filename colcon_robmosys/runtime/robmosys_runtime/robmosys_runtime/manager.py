@@ -26,6 +26,7 @@ from robmosys_runtime.activation import Outcome, SystemActivation
 from robmosys_runtime.loading import load_into
 from robmosys_runtime.output import say
 from robmosys_runtime.processes import container_node, CPP_GROUP, plan_processes, Processes
+from robmosys_runtime.watch import Watch, watch_diagnostics
 from std_srvs.srv import Trigger
 
 
@@ -144,7 +145,7 @@ class Manager:
         self.processes.on_exit = self._exited
         group = MutuallyExclusiveCallbackGroup()
         for service, answer in (('bring_up', self._bring_up), ('bring_down', self._bring_down),
-                                ('report', self._report)):
+                                ('report', self._report), ('conformance', self._conformance)):
             node.create_service(Trigger, f'~/{service}', guarded(service, answer),
                                 callback_group=group)
         self._diagnostics = node.create_publisher(DiagnosticArray, '/diagnostics', 10)
@@ -152,6 +153,10 @@ class Manager:
                           guarded('publishing /diagnostics', self.publish_diagnostics))
         if args.heartbeat > 0:
             threading.Thread(target=self._heartbeat, daemon=True, name='heartbeat').start()
+        self.watch: Optional[Watch] = None
+        if getattr(args, 'check_period', 0.0) > 0:
+            self.watch = Watch(node, description, period=args.check_period,
+                               silence=args.silence)
 
     def start(self) -> None:
         """Start the processes of this host and bring every managed instance up."""
@@ -163,6 +168,10 @@ class Manager:
                 self._load(group)
         self.processes.watch()
         self.activation.start()
+        if self.watch is not None:
+            threading.Thread(target=self.watch.run, daemon=True, name='watch', args=(
+                self.stopping, self.states,
+                lambda: self.up and not self.activation.running())).start()
 
     def _load(self, group: str) -> None:
         """Load the C++ instances into their container, in the background."""
@@ -223,6 +232,8 @@ class Manager:
                         KeyValue(key='managed', value=str(instance['managed']).lower()),
                         KeyValue(key='respawns', value=str(self._respawns.get(
                             self._group_of.get(name, name), 0)))]))
+        if self.watch is not None:
+            watch_diagnostics(self.watch, array)
         self._diagnostics.publish(array)
 
     def _bring_up(self, request: Any, response: Any) -> Any:
@@ -250,6 +261,20 @@ class Manager:
         states = self.states()
         response.success = all(states.get(n) == 'active' for n in self.managed)
         response.message = self.state_report()
+        if self.watch is not None:
+            response.message += ''.join(
+                f'\n{d.line("difference")}' for d in self.watch.differences.values())
+        return response
+
+    def _conformance(self, request: Any, response: Any) -> Any:
+        differences = list(self.watch.differences.values()) if self.watch else []
+        response.success = self.watch is not None and self.watch.ready and not differences
+        if self.watch is None:
+            response.message = 'the conformance watch is off (--check-period 0)'
+        elif not self.watch.ready:
+            response.message = 'the conformance watch has not compared the whole system yet'
+        else:
+            response.message = '\n'.join(sorted(d.line() for d in differences))
         return response
 
     # instances that end or fall silent

@@ -11,7 +11,10 @@ checks within a timeout that each connection of the model carries data:
 - a topic (push, send): a message arrives on it;
 - a query: the service answers a request (a default one);
 - an action or an event: its server is there. A goal would make the system
-  do something (move a robot): a smoke test does not send one.
+  do something (move a robot): a smoke test does not send one;
+
+and that the manager's conformance watch finds no difference between the
+running system and its model (``~/conformance``).
 
 Finally it brings the system down with SIGINT, as an operator would, and
 checks that the manager exits 0.
@@ -196,8 +199,10 @@ def spinning_node(name: str) -> Iterator[Node]:
 
 def _check(node: Node, description: Dict[str, Any], manager: 'subprocess.Popen[bytes]',
            timeout: float, bring_up_timeout: float) -> List[str]:
+    package = description['package']
     probe = Probe(node)
-    connections = description.get('connections', [])
+    # a connection to a name outside the model: nothing runs at its other end here
+    connections = [c for c in description.get('connections', []) if c['to']]
     for connection in connections:
         if connection['entity'] in TOPIC_ENTITIES:
             # listening before the system comes up: the first messages count too
@@ -222,7 +227,34 @@ def _check(node: Node, description: Dict[str, Any], manager: 'subprocess.Popen[b
                 problems.append(f'no answer from {what} within {timeout:g} s')
         elif not probe.server_there(connection['name'], interface(connection['type']), left):
             problems.append(f'no server of {what} within {timeout:g} s')
-    return problems
+    outside = [c['location'] for c in description.get('connections', []) if not c['to']]
+    return problems + _conformance(probe, package, timeout, outside)
+
+
+def _conformance(probe: Probe, package: str, timeout: float,
+                 outside: List[str]) -> List[str]:
+    """
+    Return the differences the manager's watch finds between the system and its model.
+
+    The watch checks the ports of an instance a few seconds after it became
+    active: its answer is asked until it has none, or the timeout passed. That
+    nothing is at the other end of a connection to a name outside the model
+    (at one of the lines ``outside``) is no difference here: nothing runs
+    there in a test.
+    """
+    differences: List[str] = []
+
+    def conforms() -> bool:
+        answer = probe.call(f'/{package}_bringup/conformance', Trigger, Trigger.Request(), 5.0)
+        if answer is None:
+            differences[:] = ['the system manager did not answer ~/conformance']
+            return False
+        differences[:] = [line for line in answer.message.splitlines() if line and not (
+            any(line.startswith(f'{at}: ') for at in outside) and ' has no ' in line)]
+        return not differences
+    if _wait(conforms, timeout, period=1.0):
+        return []
+    return ['the running system differs from its model:\n' + '\n'.join(differences)]
 
 
 def stop(manager: 'subprocess.Popen[Any]', timeout: float = 60.0) -> List[str]:
