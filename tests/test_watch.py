@@ -49,8 +49,13 @@ def _bringup(built: BuiltWorkspace, system: str, env: dict, *args: str):
 
 
 def _line_of(built: BuiltWorkspace, system: str, text: str) -> str:
-    """Return ``robmosys.yaml:<line>:`` of the first line of a system's model holding text."""
-    model = built.root / 'src' / system / 'robmosys.yaml'
+    """
+    Return ``robmosys.yaml:<line>:`` of the first line of a system's model holding text.
+
+    In the model's installed copy, where the manager's reports point: a package holds
+    no path of the machine that built it, and an installed system has no sources.
+    """
+    model = built.share(system) / 'robmosys' / 'robmosys.yaml'
     for number, line in enumerate(model.read_text().splitlines(), 1):
         if text in line:
             return f'{model}:{number}:'

@@ -31,6 +31,7 @@ from colcon_robmosys.generators.writer import (
     create_user_file, GENERATED_MARKER, is_generated, read_current,
     remove_generated, remove_leftovers, sync_folders, write_generated)
 from colcon_robmosys.mapping.backends import backend
+from colcon_robmosys.mapping.common import INSTALLED_MODEL
 from colcon_robmosys.mapping.component import plan_component
 from colcon_robmosys.mapping.interfaces import plan_interfaces
 from colcon_robmosys.mapping.system import plan_system
@@ -41,9 +42,6 @@ __all__ = ['create_missing_user_files', 'FileSpec', 'generate_package',
            'GenerationReport', 'MANIFEST', 'PackageFiles', 'plan_package',
            'read_manifest', 'StampStore', 'unchanged_package', 'UserFile',
            'write_tree']
-
-#: where a generated package holds its model file, which it installs
-INSTALLED_MODEL = 'robmosys/robmosys.yaml'
 
 
 @dataclass

@@ -11,7 +11,8 @@ from typing import Any
 
 from colcon_robmosys.mapping.backends import node_start
 from colcon_robmosys.mapping.common import (
-    Banner, banner_of, package_xml, PackageXml, RUNTIME_PACKAGE, unique)
+    Banner, banner_of, INSTALLED_MODEL, INSTALLED_MODEL_HEADER_LINES, package_xml, PackageXml,
+    RUNTIME_PACKAGE, unique)
 from colcon_robmosys.mapping.conformance import watched_instances, WatchedInstance
 from colcon_robmosys.mapping.connections import (
     connection_topics, node_fqn, provided_end, system_connections, SystemConnection)
@@ -89,6 +90,9 @@ class SystemPackage:
     processes: str = 'per_instance'
     #: per instance, in model order: what the system manager's watch compares
     watched: tuple[WatchedInstance, ...] = ()
+    #: each model file of the workspace -> its installed copy (share/<package>/...), where
+    #: bringup.json's locations point: they hold no path of the machine that built them
+    model_files: tuple[tuple[str, str], ...] = ()
 
     @property
     def bringup_description(self) -> str:
@@ -106,18 +110,21 @@ class SystemPackage:
             'lifecycle': n.lifecycle}
             for n in self.nodes]
         watched = {w.instance: w for w in self.watched}
+        installed = dict(self.model_files)
         for instance in instances:
             watch = watched.get(instance['instance'])
             if watch is not None:
-                instance['location'] = watch.location
+                instance['location'] = installed_location(watch.location, installed)
                 instance['ports'] = [
                     {'port': p.port, 'entity': p.entity, 'name': p.name, 'type': p.type,
                      'required': p.required, 'connected': p.connected, 'period': p.period,
                      'unconnected': p.unconnected, 'quiet': p.quiet} for p in watch.ports]
                 instance['parameters'] = [
-                    {'name': n, 'value': v, 'location': at} for n, v, at in watch.parameters]
+                    {'name': n, 'value': v, 'location': installed_location(at, installed)}
+                    for n, v, at in watch.parameters]
         connections = [{'name': c.name, 'entity': c.entity, 'type': c.type,
-                        'from': c.source, 'to': c.target, 'location': c.location}
+                        'from': c.source, 'to': c.target,
+                        'location': installed_location(c.location, installed)}
                        for c in self.connections]
         return json.dumps({'generated_by': ' '.join(self.banner.lines),
                            'package': self.package, 'params_file': PARAMS_FILE,
@@ -250,6 +257,33 @@ def _edges(system: System, components: dict[str, Component],
     return tuple(edges)
 
 
+def _installed_models(workspace: Workspace) -> dict[str, str]:
+    """Return where each model file of the workspace is installed, by a package made from it."""
+    files: dict[str, str] = {}
+    for model in sorted(workspace.generated_models, key=lambda m: m.package):
+        files.setdefault(model.info.model_file, f'share/{model.package}/{INSTALLED_MODEL}')
+    return files
+
+
+def installed_location(location: str, installed: dict[str, str]) -> str:
+    """
+    Return a location (``path:line:column``) in the installed copy of its model file.
+
+    The copy has the model's text below a header of its own: its lines are
+    shifted. A model of an underlay was read from its installed copy already.
+    A location in no such file is returned as it is.
+    """
+    parts = location.rsplit(':', 2)
+    if len(parts) != 3 or not (parts[1].isdigit() and parts[2].isdigit()):
+        return location
+    path, line, column = parts
+    if path in installed:
+        return f'{installed[path]}:{int(line) + INSTALLED_MODEL_HEADER_LINES}:{column}'
+    if '/share/' in path:
+        return f"{path[path.rindex('/share/') + 1:]}:{line}:{column}"
+    return location
+
+
 def plan_system(system: System, workspace: Workspace) -> SystemPackage:
     """Map a checked system to its package plan."""
     components: dict[str, Component] = {}
@@ -275,6 +309,7 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
         connections=system_connections(system, components, topics),
         processes=system.processes,
         watched=watched_instances(system, components, topics),
+        model_files=tuple(sorted(_installed_models(workspace).items())),
         depends=packages, exec_depends=exec_depends,
         package_xml=package_xml(banner, system.info, buildtool=['ament_cmake'],
                                 exec_=exec_depends,

@@ -26,6 +26,7 @@ import threading
 from typing import Any, Dict, List, Optional, Sequence
 
 from ament_index_python.packages import get_package_share_directory
+from robmosys_runtime.locations import resolve_locations
 from robmosys_runtime.output import say
 from robmosys_runtime.processes import NotInstalled, plan_processes, Processes
 
@@ -83,7 +84,7 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     # ros2 launch may hand the manager ROS arguments: rclpy reads those
     args = parser.parse_args(without_ros_args(list(sys.argv[1:] if argv is None else argv)))
     with open(args.description, encoding='utf-8') as stream:
-        description = json.load(stream)
+        description = resolve_locations(json.load(stream))
     package = description['package']
     params_file = os.path.join(get_package_share_directory(package), description['params_file'])
     if args.host:

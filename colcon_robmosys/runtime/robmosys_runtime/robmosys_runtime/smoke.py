@@ -39,6 +39,7 @@ import rclpy
 from rclpy.executors import MultiThreadedExecutor
 from rclpy.node import Node
 from rclpy.qos import QoSProfile, ReliabilityPolicy
+from robmosys_runtime.locations import resolve_locations
 from robmosys_runtime.ports import ActionClient
 from std_srvs.srv import Trigger
 
@@ -156,7 +157,7 @@ def run(package: str, *, timeout: float = 30.0, bring_up_timeout: float = 120.0,
     if description_file is None:
         description_file = os.path.join(get_package_share_directory(package), 'bringup.json')
     with open(description_file, encoding='utf-8') as stream:
-        description = json.load(stream)
+        description = resolve_locations(json.load(stream))
     bringup = os.path.join(get_package_prefix(package), 'lib', package, 'bringup')
     problems: List[str] = []
     with tempfile.TemporaryFile() as log:

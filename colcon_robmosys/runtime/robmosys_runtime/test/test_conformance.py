@@ -4,6 +4,7 @@
 
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from robmosys_runtime.conformance import compare, Endpoint, Graph, Model, same_value, State
+from robmosys_runtime.locations import resolve_locations
 
 RELIABLE = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
 BEST_EFFORT = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT)
@@ -134,3 +135,25 @@ def test_a_port_the_model_leaves_unconnected_is_no_difference():
         'port listener.qAdd is not connected in the model)'
     listener['ports'][1]['unconnected'] = True
     assert compare(Model(description), graph, state) == {}
+
+
+def test_locations_point_at_the_installed_model_of_the_first_prefix_that_has_it(tmp_path):
+    # bringup.json names the installed copy relative to its prefix: no path of the
+    # machine that built it; the manager reports the file of this machine's prefix
+    underlay, overlay = tmp_path / 'underlay', tmp_path / 'overlay'
+    model = 'share/a_system/robmosys/robmosys.yaml'
+    for prefix in (underlay, overlay):
+        (prefix / model).parent.mkdir(parents=True)
+        (prefix / model).write_text('robmosys: 1\n')
+    description = {
+        'instances': [{'location': f'{model}:7:5',
+                       'parameters': [{'name': 'rate', 'location': f'{model}:9:20'}]}],
+        'connections': [{'location': 'share/gone/robmosys/robmosys.yaml:3:7'},
+                        {'location': '/elsewhere/robmosys.yaml:4:1'}]}
+    resolve_locations(description, [str(overlay), str(underlay)])
+    assert description['instances'][0]['location'] == f'{overlay / model}:7:5'
+    assert description['instances'][0]['parameters'][0]['location'] == \
+        f'{overlay / model}:9:20'
+    # a file no prefix has, and a path of another form, stay as they are
+    assert [c['location'] for c in description['connections']] == [
+        'share/gone/robmosys/robmosys.yaml:3:7', '/elsewhere/robmosys.yaml:4:1']
