@@ -142,7 +142,7 @@ _PUBLISH_STRING = """
 import rclpy
 from std_msgs.msg import String
 rclpy.init()
-node = rclpy.create_node('intruder')
+node = rclpy.create_node({node!r})
 publisher = node.create_publisher(String, {topic!r}, 10)
 node.create_timer(0.1, lambda: publisher.publish(String(data='x')))
 print('ready', flush=True)
@@ -159,7 +159,8 @@ def test_a_foreign_type_on_a_modelled_topic_is_reported_and_cleared(running):
     built = running.built
     where = _line_of(built, 'dummy_robot_bringup',
                      '{from: joints.joint_states, to: monitor.joint_states')
-    with running.helper(_PUBLISH_STRING.format(topic='/dummy_robot/joint_states')):
+    intruder = _PUBLISH_STRING.format(node='intruder', topic='/dummy_robot/joint_states')
+    with running.helper(intruder):
         since = running.mark()
         line = running.reported('dummy_robot_bringup', since, 'difference', where,
                                 'node /intruder has a publisher of type std_msgs/msg/String')
@@ -340,23 +341,6 @@ def _ask(env: dict, system: str) -> dict:
     return json.loads(asked.stdout.splitlines()[-1])
 
 
-_MISSPELT = """
-import rclpy
-from std_msgs.msg import String
-rclpy.init()
-node = rclpy.create_node('outside_talker')
-publisher = node.create_publisher(String, {topic!r}, 10)
-node.create_timer(0.1, lambda: publisher.publish(String(data='x')))
-print('ready', flush=True)
-try:
-    rclpy.spin(node)
-except KeyboardInterrupt:
-    # ended on SIGINT: the node leaves the graph at once, not when its lease ends
-    node.destroy_node()
-    rclpy.try_shutdown()
-"""
-
-
 def test_a_misspelt_name_outside_the_model_is_reported_with_the_near_name(
         test_workspace_built, domain_id):
     built = test_workspace_built
@@ -369,7 +353,7 @@ def test_a_misspelt_name_outside_the_model_is_reported_with_the_near_name(
         # nothing publishes on /outside/words yet: the model says something should
         state.reported(system, since, 'difference', where,
                        r'/outside/words has no publisher$', timeout=120)
-        with state.helper(_MISSPELT.format(topic='/outside/wrods')):
+        with state.helper(_PUBLISH_STRING.format(node='outside_talker', topic='/outside/wrods')):
             since = state.mark()
             state.reported(system, since, 'difference', where,
                            '/outside/words has no publisher; /outside/wrods has one, of '
@@ -383,7 +367,8 @@ def test_a_misspelt_name_outside_the_model_is_reported_with_the_near_name(
                              'publisher; /outside/wrods has one', check.stdout,
                              re.MULTILINE), check.stdout
             since = state.mark()
-            with state.helper(_MISSPELT.format(topic='/outside/words')):
+            talker = _PUBLISH_STRING.format(node='outside_talker', topic='/outside/words')
+            with state.helper(talker):
                 since = state.mark()
                 state.reported(system, since, 'cleared', where,
                                '/outside/words has no publisher; /outside/wrods')
