@@ -12,6 +12,7 @@ no code, markup or configuration), and give back the hostile text as data.
 from __future__ import annotations
 
 import ast
+import json
 from pathlib import Path
 import re
 import shutil
@@ -309,6 +310,17 @@ def test_hostile_text_is_only_data(tmp_path, plain, text):
                      if line.startswith('| ')]
             assert not any('<' in line for line in table)
             seen.add('markdown')
+        elif path.suffix == '.json':
+            # the system manager's description: JSON whatever the text, which reads back
+            # as the value the model gives, and changes nothing else
+            def values(description: dict) -> list:
+                return [p['value'] for i in description['instances']
+                        for p in i.get('parameters', [])]
+            description, plain = json.loads(data), json.loads(plain_data)
+            assert text in values(description) and text not in values(plain)
+            assert json.dumps(description).replace(json.dumps(text), '""') == \
+                json.dumps(plain).replace(json.dumps(PLAIN), '""')
+            seen.add('json')
         elif path.name == MANIFEST:
             assert read_manifest(path).keys() == read_manifest(plain_files[name]).keys()
         else:
@@ -316,7 +328,7 @@ def test_hostile_text_is_only_data(tmp_path, plain, text):
             # (a generator that starts writing some must check it parses here)
             assert data == plain_data, f'{name}: model text reached a file not checked here'
     assert seen == {'python', 'docstring', 'xml', 'yaml', 'msg', 'cpp', 'cpp comment',
-                    'installed model', 'markdown'}
+                    'installed model', 'markdown', 'json'}
 
 
 def _md_rows(page: str) -> list[list[str]]:

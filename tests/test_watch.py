@@ -393,7 +393,9 @@ def test_the_smoke_test_fails_when_the_system_differs_from_its_model(
                          env=built.env(free_domain_id()), timeout=300)
     assert result.returncode == 0, result.stdout + result.stderr
     problems = json.loads(result.stdout.splitlines()[-1])
+    # the line of the model's installed copy, in the prefix that holds it
+    where = str(built.install / 'examples_system' / greeting['location'])
     assert problems[0] == 'the running system differs from its model:\n' + \
-        f"{greeting['location']}: error: parameter greeting of instance sender is " \
+        f'{where}: error: parameter greeting of instance sender is ' \
         "'hi there', the model gives 'bonjour'", problems
     assert len(problems) == 2 and problems[1].startswith('what the system printed:')

@@ -28,7 +28,9 @@ def check_once(description: Dict[str, Any], *, wait: float = 10.0, silence: floa
     It waits up to ``wait`` seconds for every node of the model to appear,
     asks each lifecycle instance its state and each instance the parameters
     the model sets, and listens to the push ports of periodic activities
-    for ``silence`` of their periods (at most ``wait`` more seconds).
+    for ``silence`` of their periods (at most ``wait`` more seconds). A
+    difference is one that lasts: while there are some, it compares again for
+    up to ``wait`` more seconds, as another process's endpoints reach this one.
     """
     import rclpy
     from rclpy.executors import MultiThreadedExecutor
@@ -62,7 +64,14 @@ def check_once(description: Dict[str, Any], *, wait: float = 10.0, silence: floa
         watch._up_since = {n: start for n in model.instances}
         watch._settled_since = start
         watch.period = 0.0
-        return list(watch.check(states, settled=True).values())
+        found = watch.check(states, settled=True)
+        # a difference may be discovery still under way here (an endpoint of another
+        # process not yet announced to this new one): only one that lasts counts
+        settle = time.monotonic() + wait
+        while found and time.monotonic() < settle:
+            time.sleep(0.5)
+            found = watch.check(states, settled=True)
+        return list(found.values())
     finally:
         executor.shutdown()
         spinner.join(10)
