@@ -3,7 +3,8 @@
 #   make test   run the test suite (PYTEST_ARGS='-k foo' to narrow it)
 #   ROS_DISTRO=jazzy (on the command line: make test ROS_DISTRO=jazzy) does the same on
 #               ROS 2 Jazzy, in .venv-jazzy; Kilted is the default
-#   make demo   run tools/demo.py
+#   make demo   build test_workspace with colcon and run its example system through
+#               its bringup, as a user does (tools/demo.py)
 #   make clean  remove the venv and the test workspace's build results
 #   make bench  run the six benchmarks of bench/ (or one: make bench-generation,
 #               bench-colcon, bench-runtime, bench-bringup, bench-cppbuild, bench-watch;
