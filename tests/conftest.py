@@ -4,14 +4,15 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+import fcntl
 from pathlib import Path
 import shutil
 import sys
 
 import pytest
 
-from colcon_robmosys.devtools import ros_env
+from colcon_robmosys.devtools import ros_env, workspace
 
 REPO = Path(__file__).resolve().parent.parent
 TEST_WORKSPACE = REPO / 'test_workspace'
@@ -34,15 +35,25 @@ requires_ros = pytest.mark.skipif(ros_missing_reason() is not None,
 
 @dataclass(frozen=True)
 class BuiltWorkspace:
-    """A copy of a workspace, built with colcon."""
+    """A workspace built with colcon."""
 
     root: Path
     build_output: str
+    bases: workspace.Bases = field(default_factory=workspace.Bases)
 
     @property
     def install(self) -> Path:
         """Return the install folder."""
-        return self.root / 'install'
+        return self.root / self.bases.install
+
+    @property
+    def build(self) -> Path:
+        """Return the build folder."""
+        return self.root / self.bases.build
+
+    def colcon(self, verb: str, *args: str, timeout: float = 900):
+        """Run a colcon verb on this workspace's own folders."""
+        return colcon(self.bases.command(verb, *args), cwd=self.root, timeout=timeout)
 
     def env(self, domain_id: int) -> dict[str, str]:
         """Return the environment of a user who sourced the install, on loopback."""
@@ -72,11 +83,24 @@ def build_workspace(src: Path, root: Path, *extra: str) -> BuiltWorkspace:
 
 
 @pytest.fixture(scope='session')
-def test_workspace_built(tmp_path_factory) -> BuiltWorkspace:
-    """Return test_workspace, copied and built once per test session."""
+def test_workspace_built() -> BuiltWorkspace:
+    """Return test_workspace, built in place once per test session.
+
+    It is built where ``make demo`` builds it (``workspace.bases_of``), so that after
+    the demo (CI runs it first) this build finds nothing to do. A lock keeps two test
+    sessions of one distribution from building it at the same time.
+    """
     if ros_missing_reason():
         pytest.skip(ros_missing_reason())
-    return build_workspace(TEST_WORKSPACE / 'src', tmp_path_factory.mktemp('test_ws'))
+    bases = workspace.bases_of(workspace.venv_distribution())
+    (TEST_WORKSPACE / bases.build).mkdir(exist_ok=True)
+    with open(TEST_WORKSPACE / bases.build / '.tests.lock', 'w') as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        result = colcon(bases.command('build', '--event-handlers', 'console_cohesion+'),
+                        cwd=TEST_WORKSPACE)
+    output = result.stdout + result.stderr
+    assert result.returncode == 0, f'colcon build failed:\n{output}'
+    return BuiltWorkspace(TEST_WORKSPACE, output, bases)
 
 
 @pytest.fixture

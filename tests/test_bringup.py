@@ -22,7 +22,7 @@ import pytest
 
 from colcon_robmosys.devtools.ros_env import background, free_domain_id, run as run_command
 from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
-from conftest import BuiltWorkspace, colcon, requires_ros
+from conftest import BuiltWorkspace, requires_ros
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
@@ -298,14 +298,15 @@ def test_the_smoke_test_of_every_example_system_passes_under_colcon_test(
                            'handwritten_system')
                if (test_workspace_built.install / p).is_dir()]
     assert 'examples_system' in systems
-    result = colcon(['test', '--packages-select', *systems,
-                     '--event-handlers', 'console_direct+'], cwd=test_workspace_built.root)
+    built = test_workspace_built
+    result = built.colcon('test', '--packages-select', *systems,
+                          '--event-handlers', 'console_direct+')
     assert result.returncode == 0, result.stdout + result.stderr
     for system in systems:
-        results = colcon(['test-result', '--test-result-base', f'build/{system}', '--all',
-                          '--verbose'], cwd=test_workspace_built.root, timeout=120)
+        results = built.colcon('test-result', '--test-result-base', str(built.build / system),
+                               '--all', '--verbose', timeout=120)
         assert results.returncode == 0, results.stdout + results.stderr
-        assert f'build/{system}/test_results/{system}/smoke_test.xunit.xml' in \
+        assert f'{built.build / system}/test_results/{system}/smoke_test.xunit.xml' in \
             results.stdout, results.stdout
         assert re.search(r'Summary: \d+ tests?, 0 errors, 0 failures, 0 skipped',
                          results.stdout), results.stdout

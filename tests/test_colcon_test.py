@@ -4,22 +4,23 @@
 
 from __future__ import annotations
 
-from conftest import colcon, requires_ros
+from conftest import requires_ros
 
 
 @requires_ros
 def test_colcon_test_runs_the_generated_packages_tests(test_workspace_built):
-    root = test_workspace_built.root
+    built = test_workspace_built
     packages = ['simple_msgs', 'publisher', 'subscriber', 'pubsub_system', 'cpp_publisher']
-    result = colcon(['test', '--packages-select', *packages,
-                     '--event-handlers', 'console_cohesion+'], cwd=root, timeout=600)
+    result = built.colcon('test', '--packages-select', *packages,
+                          '--event-handlers', 'console_cohesion+', timeout=600)
     output = result.stdout + result.stderr
     assert result.returncode == 0, output
     assert 'No task extension' not in output, output
     # the Python components' linters ran, on the generated files and the user's
     for package in ('publisher', 'subscriber'):
-        results = root / 'build' / package / 'test_results' / package
+        results = built.build / package / 'test_results' / package
         assert {p.name for p in results.iterdir()} >= {'flake8.xunit.xml', 'pep257.xunit.xml'}
-    summary = colcon(['test-result', '--all', '--verbose'], cwd=root, timeout=60)
+    summary = built.colcon('test-result', '--test-result-base', str(built.build), '--all',
+                           '--verbose', timeout=60)
     assert summary.returncode == 0, summary.stdout + summary.stderr
     assert ' 0 errors, 0 failures' in summary.stdout, summary.stdout

@@ -185,10 +185,12 @@ def test_build_without_change_rewrites_nothing(test_workspace_built):
     generation wrote, CMake did not configure again (its file API replies
     would be new), rosidl generated nothing and nothing was compiled.
     """
-    root = test_workspace_built.root
-    before = _stamps(root, 'build', 'install')
-    _build(root, ros_env.loopback_env(ros_env.free_domain_id()))
-    after = _stamps(root, 'build', 'install')
+    built = test_workspace_built
+    bases = (built.bases.build, built.bases.install)
+    before = _stamps(built.root, *bases)
+    result = built.colcon('build', '--event-handlers', 'console_cohesion+')
+    assert result.returncode == 0, result.stdout + result.stderr
+    after = _stamps(built.root, *bases)
     changed = sorted(n for n in before.keys() | after.keys() if after.get(n) != before.get(n))
     assert not changed, changed
     assert [n for n in before if '/src-gen/' in n]

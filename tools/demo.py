@@ -29,7 +29,7 @@ import subprocess
 import sys
 import time
 
-from colcon_robmosys.devtools import ros_env
+from colcon_robmosys.devtools import ros_env, workspace
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -58,31 +58,13 @@ def run_to_end(command: list[str], *, env: dict[str, str], timeout: float,
             raise
 
 
-def colcon_build(distro: str) -> list[str]:
-    """Return the command line that builds test_workspace with a distribution's venv.
-
-    Kilted's build, install and log folders are colcon's defaults, where README's own
-    ``colcon build`` puts them; Jazzy's stand beside them, so that neither build
-    reuses the other's CMake caches.
-    """
-    colcon = str(Path(sys.prefix) / 'bin' / 'colcon')
-    if distro == 'kilted':
-        return [colcon, 'build']
-    return [colcon, '--log-base', f'log-{distro}', 'build',
-            '--build-base', f'build-{distro}', '--install-base', f'install-{distro}']
-
-
-def install_of(distro: str) -> Path:
-    """Return the install folder of test_workspace built with a distribution's venv."""
-    return WORKSPACE / ('install' if distro == 'kilted' else f'install-{distro}')
-
-
 def build(distro: str, domain_id: int) -> None:
     """Build the workspace in place, showing colcon's output."""
-    command = colcon_build(distro)
-    say(f'{" ".join(["colcon", *command[1:]])}   (in {WORKSPACE.relative_to(REPO)}, '
+    arguments = workspace.bases_of(distro).command('build')
+    say(f'{" ".join(["colcon", *arguments])}   (in {WORKSPACE.relative_to(REPO)}, '
         f'with ROS 2 {distro.capitalize()} of {Path(sys.prefix).name})')
-    code = run_to_end(command, env=ros_env.loopback_env(domain_id), cwd=WORKSPACE,
+    code = run_to_end([str(Path(sys.prefix) / 'bin' / 'colcon'), *arguments],
+                      env=ros_env.loopback_env(domain_id), cwd=WORKSPACE,
                       timeout=BUILD_TIMEOUT)
     if code:
         sys.exit(f'colcon build failed with exit code {code}')
@@ -166,9 +148,11 @@ def main() -> int:
     parser.add_argument('--system', default='pubsub_system',
                         help='the system package to run (default: pubsub_system; '
                         'dummy_robot_bringup is the ROS 2 dummy robot)')
-    parser.add_argument('--distro', default='kilted', choices=('kilted', 'jazzy'),
-                        help="the ROS 2 distribution of this venv (make's ROS_DISTRO): "
-                        'jazzy builds into build-jazzy/ and install-jazzy/')
+    parser.add_argument('--distro', default=workspace.venv_distribution(),
+                        choices=workspace.DISTRIBUTIONS,
+                        help="the ROS 2 distribution of this venv (make's ROS_DISTRO; "
+                        'default: that of its ros-* wheels): jazzy builds into '
+                        'build-jazzy/ and install-jazzy/')
     parser.add_argument('--no-build', action='store_true',
                         help='run what the install of test_workspace holds')
     parser.add_argument('--run-system', metavar='SYSTEM', help=argparse.SUPPRESS)
@@ -178,7 +162,8 @@ def main() -> int:
     domain_id = ros_env.free_domain_id()
     if not args.no_build:
         build(args.distro, domain_id)
-    return run(args.system, install_of(args.distro), domain_id, args.seconds)
+    install = WORKSPACE / workspace.bases_of(args.distro).install
+    return run(args.system, install, domain_id, args.seconds)
 
 
 if __name__ == '__main__':
