@@ -160,8 +160,8 @@ def test_a_foreign_type_on_a_modelled_topic_is_reported_and_cleared(running):
     where = _line_of(built, 'dummy_robot_bringup',
                      '{from: joints.joint_states, to: monitor.joint_states')
     intruder = _PUBLISH_STRING.format(node='intruder', topic='/dummy_robot/joint_states')
+    since = running.mark()  # before the helper: a report may come before its 'ready'
     with running.helper(intruder):
-        since = running.mark()
         line = running.reported('dummy_robot_bringup', since, 'difference', where,
                                 'node /intruder has a publisher of type std_msgs/msg/String')
         assert "the model's is sensor_msgs/msg/JointState" in line
@@ -190,8 +190,8 @@ except KeyboardInterrupt:
 def test_a_node_whose_qos_cannot_match_is_reported_and_cleared(running):
     where = _line_of(running.built, 'dummy_robot_bringup',
                      '{from: laser_front.scan, to: monitor.scan')
+    since = running.mark()  # before the helper: a report may come before its 'ready'
     with running.helper(_RELIABLE_READER):
-        since = running.mark()
         line = running.reported('dummy_robot_bringup', since, 'difference', where,
                                 'subscription of node /picky_reader cannot match')
         assert 'the publisher of node /dummy_robot/laser_' in line, line
@@ -217,8 +217,8 @@ except KeyboardInterrupt:
 
 def test_a_second_server_is_reported_and_cleared(running):
     where = _line_of(running.built, 'examples_system', '{from: add_server.qAdd')
+    since = running.mark()  # before the helper: a report may come before its 'ready'
     with running.helper(_SECOND_SERVER):
-        since = running.mark()
         running.reported('examples_system', since, 'difference', where,
                          r'/examples/add_server/qAdd has a second server, node /another_adder')
         # operators see it in the services and on /diagnostics, at the model's line
@@ -353,8 +353,8 @@ def test_a_misspelt_name_outside_the_model_is_reported_with_the_near_name(
         # nothing publishes on /outside/words yet: the model says something should
         state.reported(system, since, 'difference', where,
                        r'/outside/words has no publisher$', timeout=120)
+        since = state.mark()
         with state.helper(_PUBLISH_STRING.format(node='outside_talker', topic='/outside/wrods')):
-            since = state.mark()
             state.reported(system, since, 'difference', where,
                            '/outside/words has no publisher; /outside/wrods has one, of '
                            'the same type')
@@ -369,7 +369,6 @@ def test_a_misspelt_name_outside_the_model_is_reported_with_the_near_name(
             since = state.mark()
             talker = _PUBLISH_STRING.format(node='outside_talker', topic='/outside/words')
             with state.helper(talker):
-                since = state.mark()
                 state.reported(system, since, 'cleared', where,
                                '/outside/words has no publisher; /outside/wrods')
                 check = subprocess.run([sys.executable, str(executable), '--check'], env=env,
