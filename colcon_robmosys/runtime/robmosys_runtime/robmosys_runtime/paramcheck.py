@@ -84,8 +84,8 @@ class SystemParameters:
                             f'(its nodes: {known})')]
         problems: List[Problem] = []
         for value in entry.values:
-            having = {fqn: self.nodes[fqn][value.name] for fqn in matched
-                      if value.name in self.nodes[fqn]}
+            having = {fqn: self.declared(fqn, value.name) for fqn in matched
+                      if self.declared(fqn, value.name) is not None}
             if not having:
                 problems.append(self._unknown(entry, value, matched, wildcard))
                 continue
@@ -98,6 +98,15 @@ class SystemParameters:
                 problems.append(Problem(line, column, (
                     f"parameter '{value.name}' of {', '.join(fqns)}: {problem}"), severity))
         return problems
+
+    def declared(self, fqn: str, name: str) -> Optional[Dict[str, Any]]:
+        """
+        Return what a node declares of a parameter, None if it does not declare it.
+
+        The one lookup of a name: parameters whose names depend on values (a
+        group per entry of a string array) are to be resolved here.
+        """
+        return self.nodes[fqn].get(name)
 
     def _unknown(self, entry: NodeEntry, value: FileValue, matched: List[str],
                  wildcard: bool) -> Problem:
