@@ -36,6 +36,10 @@ QOS_POLICIES: dict[str, tuple[str, tuple[str, ...] | None]] = {
     'liveliness_lease_duration': ('int', None),
 }
 
+#: What rclcpp and rclpy (Iron and later) declare besides NODE_PARAMETERS, read-only: in
+#: every dump of a node (``ros2 param dump``), so in files made from one
+READ_ONLY_NODE_PARAMETERS = {'start_type_description_service': 'bool'}
+
 #: What a generated node announces of itself (robmosys_runtime's announce): read-only,
 #: declared ignoring overrides, so that a parameter file never changes them
 ANNOUNCED = {'robmosys.component': 'string', 'robmosys.ports': 'string[]'}
@@ -76,6 +80,8 @@ def declared_parameters(instance: Instance, component: Component,
         for p in component.parameters]
     declared += [DeclaredParameter(name, type_, 'node')
                  for name, type_ in NODE_PARAMETERS.items()]
+    declared += [DeclaredParameter(name, type_, 'node', True)
+                 for name, type_ in READ_ONLY_NODE_PARAMETERS.items()]
     if component.external:
         # a hand-written node declares what its model says, and what every node does
         return tuple(declared)

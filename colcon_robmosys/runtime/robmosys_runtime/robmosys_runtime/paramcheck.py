@@ -111,7 +111,8 @@ class SystemParameters:
     def _unknown(self, entry: NodeEntry, value: FileValue, matched: List[str],
                  wildcard: bool) -> Problem:
         names = sorted({n for fqn in matched for n, d in self.nodes[fqn].items()
-                        if d.get('origin') in ('model', 'node')})
+                        if d.get('origin') == 'model' or
+                        d.get('origin') == 'node' and not d.get('read_only')})
         candidates = {n for fqn in matched for n in self.nodes[fqn]}
         near = _did_you_mean(value.name, candidates)
         whose = (f'no node that {entry.name} applies to ({_listed(matched)}) has a'
