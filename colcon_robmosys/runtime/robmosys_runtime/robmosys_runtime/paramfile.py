@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import difflib
 import math
 import re
-from typing import Any, List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 import yaml
 
@@ -179,6 +179,7 @@ def _read_nodes(mapping: Any, namespace: str, result: ParameterFile) -> None:
                 result.problems.append(Problem(*_at(value), (
                     f"'{PARAMS_KEY}' of {name} holds {_kind(value)}: it maps parameter "
                     'names to values')))
+            _say_repeated(values, result)
             result.entries.append(NodeEntry(name, _at(key), tuple(values)))
         elif _near_params_key(key.value):
             result.problems.append(Problem(*_at(key), (
@@ -190,6 +191,17 @@ def _read_nodes(mapping: Any, namespace: str, result: ParameterFile) -> None:
                 f"'{key.value}' holds a value outside any '{PARAMS_KEY}': rcl refuses the "
                 f"file (a parameter of {_join(namespace, key.value).rpartition('/')[0] or '/'} "
                 f"goes under its '{PARAMS_KEY}')")))
+
+
+def _say_repeated(values: List[FileValue], result: ParameterFile) -> None:
+    """Warn of a parameter an entry sets twice (``pid.p`` and ``pid: {p}``): the last wins."""
+    first: Dict[str, FileValue] = {}
+    for value in values:
+        if value.name in first:
+            result.problems.append(Problem(*value.at, (
+                f"'{value.name}' is set again here (first on line {first[value.name].at[0]}): "
+                'this later value wins'), 'warning'))
+        first.setdefault(value.name, value)
 
 
 def _near_params_key(key: str) -> bool:
