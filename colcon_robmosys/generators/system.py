@@ -30,6 +30,7 @@ FILES = (
     Row('{diagram}', 'system/diagram.dot.jinja'),
     Row('bringup.json', 'system/bringup.json.jinja'),
     Row('bringup', 'system/bringup.jinja', executable=True),
+    Row('check_params', 'system/check_params.jinja', executable=True),
     Row('test/test_smoke.py', 'system/test_smoke.py.jinja'),
     Row('CMakeLists.txt', 'system/CMakeLists.txt.jinja'),
     Row('package.xml', 'common/package.xml.jinja', part='package_xml'),

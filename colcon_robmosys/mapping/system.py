@@ -16,6 +16,7 @@ from colcon_robmosys.mapping.common import (
 from colcon_robmosys.mapping.conformance import watched_instances, WatchedInstance
 from colcon_robmosys.mapping.connections import (
     connection_topics, node_fqn, provided_end, system_connections, SystemConnection)
+from colcon_robmosys.mapping.declared import declared_parameters, DeclaredParameter
 from colcon_robmosys.mapping.launch import (
     launch_files, LaunchFile, PARAMS_FILE, SystemNode)
 from colcon_robmosys.mapping.names import connection_name
@@ -93,6 +94,8 @@ class SystemPackage:
     #: each model file of the workspace -> its installed copy (share/<package>/...), where
     #: bringup.json's locations point: they hold no path of the machine that built them
     model_files: tuple[tuple[str, str], ...] = ()
+    #: per instance: the parameters its node declares (what a parameter file may set)
+    declared: tuple[tuple[str, tuple[DeclaredParameter, ...]], ...] = ()
 
     @property
     def bringup_description(self) -> str:
@@ -111,7 +114,9 @@ class SystemPackage:
             for n in self.nodes]
         watched = {w.instance: w for w in self.watched}
         installed = dict(self.model_files)
+        declared = dict(self.declared)
         for instance in instances:
+            instance['declared'] = [d.as_json() for d in declared.get(instance['instance'], ())]
             watch = watched.get(instance['instance'])
             if watch is not None:
                 instance['location'] = installed_location(watch.location, installed)
@@ -310,6 +315,8 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
         processes=system.processes,
         watched=watched_instances(system, components, topics),
         model_files=tuple(sorted(_installed_models(workspace).items())),
+        declared=tuple((i.name, declared_parameters(i, components[i.name], topics))
+                       for i in system.instances),
         depends=packages, exec_depends=exec_depends,
         package_xml=package_xml(banner, system.info, buildtool=['ament_cmake'],
                                 exec_=exec_depends,

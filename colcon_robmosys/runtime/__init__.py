@@ -11,8 +11,11 @@ more package when no prefix provides it already (see :func:`installed_runtime`).
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
+import importlib
 import os
 from pathlib import Path
+import sys
+from types import ModuleType
 
 #: The name of the runtime package.
 RUNTIME_PACKAGE = 'robmosys_runtime'
@@ -83,3 +86,24 @@ def installed_runtime(environ: Mapping[str, str] | None = None,
         if found is not None:
             return found
     return None
+
+
+def runtime_module(name: str) -> ModuleType:
+    """
+    Import a module of the runtime's Python package from this package data.
+
+    For what the glue runs of the runtime itself (the check of parameter
+    files), so that it is the runtime of this colcon-robmosys, not an older
+    one of a sourced underlay. The module must not need rclpy.
+    """
+    source = str(runtime_source())
+    loaded = sys.modules.get(RUNTIME_PACKAGE)
+    if loaded is not None and not str(getattr(loaded, '__file__', '')).startswith(source):
+        for key in [k for k in sys.modules
+                    if k == RUNTIME_PACKAGE or k.startswith(f'{RUNTIME_PACKAGE}.')]:
+            del sys.modules[key]
+    sys.path.insert(0, source)
+    try:
+        return importlib.import_module(f'{RUNTIME_PACKAGE}.{name}')
+    finally:
+        sys.path.remove(source)

@@ -22,6 +22,15 @@ def test_bringup_starts_the_instances_before_it_imports_rclpy():
     assert shown.stdout.strip() == '[]'
 
 
+def test_the_check_of_parameter_files_runs_without_rclpy():
+    # check_params runs offline, where the system is installed: no rclpy, no graph
+    shown = subprocess.run(
+        [sys.executable, '-c', 'import sys, robmosys_runtime.paramcheck\n'
+         "print(sorted(m for m in sys.modules if m.split('.')[0] == 'rclpy'))"],
+        capture_output=True, text=True, timeout=60, check=True)
+    assert shown.stdout.strip() == '[]'
+
+
 def test_the_names_of_the_package_are_those_of_their_modules():
     assert robmosys_runtime.ComponentNode is ComponentNode
     assert robmosys_runtime.run is run
