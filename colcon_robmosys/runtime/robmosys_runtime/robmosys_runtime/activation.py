@@ -90,10 +90,14 @@ class SystemActivation:
             thread.start()
             self._threads.append(thread)
 
-    def restart(self, name: str) -> None:
-        """Bring an instance up again, with what its failure held back."""
-        waiting = [n for n in self._waiting_for(name) if self.states().get(n) != 'active']
-        self.start([name] + waiting)
+    def restart(self, *names: str) -> None:
+        """Bring instances up again, with what their failure held back."""
+        states = self.states()
+        todo = list(names)
+        for name in names:
+            todo += [n for n in self._waiting_for(name)
+                     if states.get(n) != 'active' and n not in todo]
+        self.start(todo)
 
     def states(self) -> Dict[str, str]:
         """Return the last known state of each instance brought up (``failed`` if it failed)."""

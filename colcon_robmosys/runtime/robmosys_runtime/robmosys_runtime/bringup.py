@@ -223,7 +223,9 @@ def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file:
         else:
             say('error', f"{', '.join(names)} exited with code {code}")
 
-    processes = Processes(exited)
+    # started from the main thread, and again from the thread that watches them
+    # (exited): both live as long as this bringup, and the instances end with it
+    processes = Processes(exited, end_with_parent=True)
 
     def on_signal(signum: int, frame: Any) -> None:
         if stopping.is_set():

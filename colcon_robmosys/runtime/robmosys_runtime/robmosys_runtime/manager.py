@@ -23,6 +23,7 @@ from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.executors import Executor
 from rclpy.node import Node
 from robmosys_runtime.activation import Outcome, SystemActivation
+from robmosys_runtime.heartbeat import Heartbeat
 from robmosys_runtime.loading import load_into
 from robmosys_runtime.output import say
 from robmosys_runtime.processes import container_node, CPP_GROUP, plan_processes, Processes
@@ -152,7 +153,10 @@ class Manager:
         node.create_timer(args.diagnostics_period,
                           guarded('publishing /diagnostics', self.publish_diagnostics))
         if args.heartbeat > 0:
-            threading.Thread(target=self._heartbeat, daemon=True, name='heartbeat').start()
+            heartbeat = Heartbeat(self.activation, args.heartbeat, self._silent, self.instances,
+                                  set(self._group_of), lambda: self.up)
+            threading.Thread(target=heartbeat.run, args=(self.stopping,), daemon=True,
+                             name='heartbeat').start()
         self.watch: Optional[Watch] = None
         if getattr(args, 'check_period', 0.0) > 0:
             self.watch = Watch(node, description, period=args.check_period,
@@ -303,37 +307,7 @@ class Manager:
         self.processes.start(group, args)
         if group == CPP_GROUP:
             self._load(group)
-        for name in names:
-            if name in self.managed and self.up:
-                # brought back to the state of the system, with what it held back
-                self.activation.restart(name)
-
-    def _heartbeat(self) -> None:
-        period = self._args.heartbeat
-        missed: Dict[str, int] = {}
-        while not self.stopping.wait(period):
-            if self.activation.running() or not self.up:
-                continue
-            for name, state in self.activation.states().items():
-                if state == 'failed' or self.stopping.is_set():
-                    continue
-                answer = self.activation.probe(name, timeout=period)
-                if answer is None:
-                    missed[name] = missed.get(name, 0) + 1
-                    if missed[name] == 3 and name not in self._silent:
-                        self._silent[name] = f'no answer for {3 * period:g} s'
-                        say('error', f'instance {name} does not answer (heartbeat): '
-                            f'no answer for {3 * period:g} s')
-                    continue
-                missed[name] = 0
-                if answer == 'unconfigured' and self.instances[name].get('respawn'):
-                    # started again by the bringup of its host: bring it back
-                    say('info', f'instance {name} came back (heartbeat): bringing it up')
-                    self._silent.pop(name, None)
-                    self.activation.restart(name)
-                elif answer != 'active':
-                    self._silent[name] = f'it is {answer}, not active'
-                    say('error', f'instance {name} is {answer}, not active (heartbeat)')
-                    self.activation.instance_failed(name, f'is {answer}, not active')
-                elif self._silent.pop(name, None) is not None:
-                    say('info', f'instance {name} answers again (heartbeat)')
+        back = [name for name in names if name in self.managed]
+        if back and self.up:
+            # brought back to the state of the system, with what it held back
+            self.activation.restart(*back)

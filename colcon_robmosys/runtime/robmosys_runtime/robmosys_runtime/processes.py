@@ -11,13 +11,15 @@ a 50-instance system then does not start 50 Python interpreters.
 
 from __future__ import annotations
 
+import ctypes
+import functools
 import os
 import signal
 import subprocess
 import sys
 import threading
 import time
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 from ament_index_python.packages import get_package_prefix, PackageNotFoundError
 
@@ -36,10 +38,38 @@ def command(instance: Dict[str, Any], params_file: str) -> List[str]:
     return args + node_arguments(instance, params_file)
 
 
-class Processes:
-    """The processes of the instances, watched: one that ends is reported."""
+def _ending_with_parent() -> Optional[Callable[[], None]]:
+    """
+    Return what a child calls to get SIGTERM when the thread that started it ends (Linux).
 
-    def __init__(self, on_exit: Any) -> None:
+    prctl(PR_SET_PDEATHSIG): the instances of a host's ``bringup`` end with
+    it, even when it is killed. Otherwise they would live on unsupervised,
+    and the ``bringup`` started again would start a second node of each name.
+    The function is looked up here, in the parent: the child only calls it.
+    """
+    if not sys.platform.startswith('linux'):
+        return None
+    try:
+        prctl = ctypes.CDLL(None, use_errno=True).prctl
+    except (OSError, AttributeError):
+        return None
+    return functools.partial(prctl, _PR_SET_PDEATHSIG, int(signal.SIGTERM))
+
+
+_PR_SET_PDEATHSIG = 1
+
+
+class Processes:
+    """
+    The processes of the instances, watched: one that ends is reported.
+
+    :param end_with_parent: whether each process gets SIGTERM when the thread
+        that started it ends (start them from threads that live as long as
+        the process, as a host's ``bringup`` does)
+    """
+
+    def __init__(self, on_exit: Any, end_with_parent: bool = False) -> None:
+        self._preexec = _ending_with_parent() if end_with_parent else None
         self._processes: Dict[str, subprocess.Popen[bytes]] = {}
         #: called with (name, exit code) once a process ends, while watched
         self.on_exit = on_exit
@@ -49,7 +79,8 @@ class Processes:
     def start(self, name: str, args: Sequence[str]) -> None:
         """Start an instance in a session of its own: a Ctrl-C reaches only bringup."""
         self._processes[name] = subprocess.Popen(
-            list(args), stdin=subprocess.DEVNULL, start_new_session=True)
+            list(args), stdin=subprocess.DEVNULL, start_new_session=True,
+            preexec_fn=self._preexec)
 
     def started(self) -> bool:
         """Tell whether a process was started."""
