@@ -25,7 +25,8 @@ from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.generators import create_missing_user_files, generate_package
 from colcon_robmosys.generators import plan_package
-from colcon_robmosys.runtime import RUNTIME_PACKAGE, runtime_source
+from colcon_robmosys.mapping.common import RUNTIME_PACKAGE
+from colcon_robmosys.runtime import runtime_source
 
 GROUP = 10
 METADATA = {

@@ -19,7 +19,8 @@ from xml.etree import ElementTree
 import pytest
 
 from colcon_robmosys.devtools import ros_env
-from colcon_robmosys.runtime import installed_runtime, RUNTIME_PACKAGE, runtime_source
+from colcon_robmosys.mapping.common import RUNTIME_PACKAGE
+from colcon_robmosys.runtime import installed_runtime, runtime_source
 from conftest import build_workspace, BuiltWorkspace, requires_ros
 
 MODEL = """\

@@ -15,7 +15,6 @@ schema compiled to bytecode, for the files that are not in the cache.
 from __future__ import annotations
 
 from contextlib import suppress
-from dataclasses import dataclass
 from functools import lru_cache
 import hashlib
 import marshal
@@ -26,9 +25,8 @@ import sys
 import tempfile
 
 import colcon_robmosys
-from colcon_robmosys.errors import Diagnostic
+from colcon_robmosys.check.results import CheckedFile
 from colcon_robmosys.model import rosidl, schema
-from colcon_robmosys.model.types import ModelFile
 
 #: The folder of the cache, in the build base (``build/`` of colcon).
 CACHE_DIR = '.robmosys-cache'
@@ -68,18 +66,6 @@ def file_key(path: Path, raw: bytes) -> str:
     digest.update(str(path).encode('utf-8', 'surrogateescape') + b'\0')
     digest.update(raw)
     return digest.hexdigest()
-
-
-@dataclass(frozen=True)
-class CheckedFile:
-    """What loading and checking one model file on its own gave."""
-
-    #: the models that passed its own rules (None: the file cannot be read)
-    model_file: ModelFile | None
-    #: its problems, if any
-    diagnostics: tuple[Diagnostic, ...] = ()
-    #: the packages, and their kinds, of its models that did not pass
-    declared: tuple[tuple[str, str], ...] = ()
 
 
 class ModelCache:

@@ -1,7 +1,7 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-"""The state every family of workspace rules shares: models and findings."""
+"""What every rule of the workspace is given (check.rules): the models, and the findings."""
 
 from __future__ import annotations
 

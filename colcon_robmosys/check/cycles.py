@@ -10,42 +10,50 @@ from colcon_robmosys.model.files import model_dependencies
 from colcon_robmosys.model.types import ServiceDefinition, System
 
 
-class CycleRules(CheckContext):
-    """Loops a build, a message or an activation order cannot have."""
+def check_dependency_cycles(ctx: CheckContext) -> None:
+    """Check that no package depends on itself, through others or directly."""
+    graph = {name: {d for d in model_dependencies(model)
+                    if d in ctx.models}
+             for name, model in ctx.models.items()}
+    for cycle in _cycles(graph):
+        model = ctx.models[cycle[0]]
+        ctx.error(model.info.location, 'dependency cycle: ' +
+                  ' -> '.join(cycle + [cycle[0]]))
 
-    def _check_cycles(self) -> None:
-        graph = {name: {d for d in model_dependencies(model)
-                        if d in self.models}
-                 for name, model in self.models.items()}
-        for cycle in _cycles(graph):
-            model = self.models[cycle[0]]
-            self.error(model.info.location, 'dependency cycle: ' +
-                       ' -> '.join(cycle + [cycle[0]]))
-        for model in self.models.values():
-            if isinstance(model, ServiceDefinition):
-                self._check_message_cycles(model)
-            if isinstance(model, System):
-                order = {i.name: set(i.after) for i in model.instances}
-                for cycle in _cycles(order):
-                    instance = model.instance(cycle[0])
-                    assert instance is not None
-                    # the entry of its 'after' that the cycle goes on through
-                    where = instance.after_location(cycle[1 % len(cycle)])
-                    self.error(where, 'activation order cycle: ' +
-                               ' -> '.join(cycle + [cycle[0]]))
 
-    def _check_message_cycles(self, definition: ServiceDefinition) -> None:
-        # across packages, a cycle of messages is a dependency cycle too
-        objects = {o.name: o for o in definition.communication_objects}
-        graph = {name: {f.type.message.name for f in obj.structure.fields
-                        if f.type.message is not None and
-                        f.type.message.package == definition.package}
-                 for name, obj in objects.items()}
-        for cycle in _cycles(graph):
-            self.error(objects[cycle[0]].location, (
-                'message type cycle: ' + ' -> '.join(cycle + [cycle[0]]) +
-                ' (a message cannot contain itself, not even through '
-                'arrays or other messages)'))
+def check_message_cycles(ctx: CheckContext) -> None:
+    """Check that no message of a service definition contains itself."""
+    for model in ctx.models.values():
+        if isinstance(model, ServiceDefinition):
+            _check_message_cycles(ctx, model)
+
+
+def check_activation_cycles(ctx: CheckContext) -> None:
+    """Check that no instance of a system is activated after itself."""
+    for model in ctx.models.values():
+        if isinstance(model, System):
+            order = {i.name: set(i.after) for i in model.instances}
+            for cycle in _cycles(order):
+                instance = model.instance(cycle[0])
+                assert instance is not None
+                # the entry of its 'after' that the cycle goes on through
+                where = instance.after_location(cycle[1 % len(cycle)])
+                ctx.error(where, 'activation order cycle: ' +
+                          ' -> '.join(cycle + [cycle[0]]))
+
+
+def _check_message_cycles(ctx: CheckContext, definition: ServiceDefinition) -> None:
+    # across packages, a cycle of messages is a dependency cycle too
+    objects = {o.name: o for o in definition.communication_objects}
+    graph = {name: {f.type.message.name for f in obj.structure.fields
+                    if f.type.message is not None and
+                    f.type.message.package == definition.package}
+             for name, obj in objects.items()}
+    for cycle in _cycles(graph):
+        ctx.error(objects[cycle[0]].location, (
+            'message type cycle: ' + ' -> '.join(cycle + [cycle[0]]) +
+            ' (a message cannot contain itself, not even through '
+            'arrays or other messages)'))
 
 
 def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:

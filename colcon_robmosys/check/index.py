@@ -22,7 +22,7 @@ from __future__ import annotations
 from functools import lru_cache
 import os
 from pathlib import Path
-from typing import Mapping, Sequence
+from typing import Iterable, Mapping, Sequence
 
 from colcon_robmosys.model.types import InterfaceRef
 
@@ -30,23 +30,54 @@ from colcon_robmosys.model.types import InterfaceRef
 RESOURCE_INDEX = Path('share', 'ament_index', 'resource_index')
 
 
+def environ_prefixes(environ: Mapping[str, str], variable: str) -> list[str]:
+    """Return the prefixes of a path list of the environment, in order."""
+    return [entry for entry in environ.get(variable, '').split(os.pathsep) if entry]
+
+
+def search_prefixes(prefixes: Iterable[Path | str], markers: Iterable[Path],
+                    ignored: Iterable[Path] = ()) -> Path | None:
+    """
+    Return the first prefix that holds one of the markers, resolved, or None.
+
+    The one search of install prefixes: which prefix has a resource of the
+    ament index (:class:`InterfaceIndex`), what provides the runtime, and
+    which packages a component needs of the prefix no prefix provides
+    (package_selection). Not ament_index_python: it reads os.environ's
+    AMENT_PREFIX_PATH only, and knows neither CMAKE_PREFIX_PATH, the
+    prefixes of a workspace's dependencies nor prefixes that do not count.
+
+    :param ignored: prefixes at or below these folders do not count
+    """
+    markers = tuple(markers)
+    skipped = [Path(p).resolve() for p in ignored]
+    for entry in prefixes:
+        prefix = Path(entry).resolve()
+        if any(prefix == s or s in prefix.parents for s in skipped):
+            continue
+        if any((prefix / marker).is_file() for marker in markers):
+            return prefix
+    return None
+
+
 class InterfaceIndex:
     """The packages, and their resources, installed in a set of ament prefixes."""
 
     def __init__(self, prefixes: Sequence[Path]):
         # a prefix named twice is one prefix, where it comes first
-        kept: dict[str, Path] = {}
+        kept: dict[Path, Path] = {}
         for prefix in prefixes:
-            kept.setdefault(os.path.realpath(prefix), Path(prefix))
+            kept.setdefault(Path(os.path.realpath(prefix)), Path(prefix))
         self.prefixes = tuple(kept.values())
+        #: each prefix resolved -> as given
+        self._given = kept
 
     @classmethod
     def from_environment(
             cls, env: Mapping[str, str] | None = None) -> 'InterfaceIndex':
         """Use the prefixes of ``AMENT_PREFIX_PATH``."""
-        value = (os.environ if env is None else env).get(
-            'AMENT_PREFIX_PATH', '')
-        return cls([Path(p) for p in value.split(os.pathsep) if p])
+        return cls([Path(p) for p in environ_prefixes(
+            os.environ if env is None else env, 'AMENT_PREFIX_PATH')])
 
     def resources(self, resource_type: str) -> dict[str, list[Path]]:
         """Return the names of a resource type -> the prefixes that have each, in order."""
@@ -71,10 +102,8 @@ class InterfaceIndex:
     @lru_cache(maxsize=None)
     def resource_prefix(self, resource_type: str, name: str) -> Path | None:
         """Return the first prefix that has a resource, or None."""
-        for prefix in self.prefixes:
-            if (prefix / RESOURCE_INDEX / resource_type / name).is_file():
-                return prefix
-        return None
+        found = search_prefixes(self.prefixes, [RESOURCE_INDEX / resource_type / name])
+        return None if found is None else self._given[found]
 
     def package_share(self, package: str) -> Path | None:
         """Return the share directory of an installed package, if any."""

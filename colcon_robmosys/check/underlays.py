@@ -19,8 +19,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from colcon_robmosys.check.cache import CheckedFile
 from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.check.results import CheckedFile
 from colcon_robmosys.errors import Diagnostic
 from colcon_robmosys.model.types import model_key, ModelFile
 

@@ -11,25 +11,22 @@ everything goes through one renderer and one writer.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
-import os
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
 from colcon_robmosys.generators.component import component_package
 from colcon_robmosys.generators.files import FileSpec, PackageFiles, UserFile
 from colcon_robmosys.generators.interfaces import interfaces_package
-from colcon_robmosys.generators.manifest import (
-    digest, MANIFEST, Manifest, read_manifest, unchanged_since,
-    write_manifest)
+from colcon_robmosys.generators.manifest import digest, MANIFEST, read_manifest
 from colcon_robmosys.generators.render import render
 from colcon_robmosys.generators.stamp import StampStore
 from colcon_robmosys.generators.system import system_package
 from colcon_robmosys.generators.usercode import (
     check_user_file, merge_conflicts, orphan_problems, user_tree)
 from colcon_robmosys.generators.writer import (
-    create_user_file, GENERATED_MARKER, is_generated, read_current,
-    remove_generated, remove_leftovers, sync_folders, write_generated)
+    create_user_file, GenerationReport, sync_folders, write_generated, write_outputs,
+    write_tree)
 from colcon_robmosys.mapping.backends import backend
 from colcon_robmosys.mapping.common import INSTALLED_MODEL
 from colcon_robmosys.mapping.component import plan_component
@@ -42,16 +39,6 @@ __all__ = ['create_missing_user_files', 'FileSpec', 'generate_package',
            'GenerationReport', 'MANIFEST', 'PackageFiles', 'plan_package',
            'read_manifest', 'StampStore', 'unchanged_package', 'UserFile',
            'write_tree']
-
-
-@dataclass
-class GenerationReport:
-    """What a generation did."""
-
-    written: list[Path] = field(default_factory=list)
-    unchanged: list[Path] = field(default_factory=list)
-    removed: list[Path] = field(default_factory=list)
-    created_user_files: list[Path] = field(default_factory=list)
 
 
 def plan_package(workspace: Workspace, package: str) -> PackageFiles:
@@ -176,24 +163,11 @@ def generate_package(package: PackageFiles, out_dir: Path, *,
             write_generated(out_dir / relative, data, executable=executable)
         raise RobmosysError(problems)
     if stamps is None:
-        return _write_outputs(outputs, out_dir, sync=sync)
+        return write_outputs(outputs, out_dir, sync=sync)
     stamps.forget(out_dir)
-    report = _write_outputs(outputs, out_dir, sync=sync)
+    report = write_outputs(outputs, out_dir, sync=sync)
     stamps.record(out_dir, fingerprint, [MANIFEST, *outputs], copied)
     return report
-
-
-def write_tree(files: dict[str, tuple[bytes, bool]], out_dir: Path, *,
-               sync: bool = True) -> GenerationReport:
-    """Write files that are not rendered (a copy of a package) as generated ones.
-
-    The manifest records them: writing again replaces only what is unchanged
-    since, and a file of the user's in the way is refused.
-
-    :param files: path relative to out_dir -> content, and whether it is
-      executable
-    """
-    return _write_outputs(dict(files), out_dir, sync=sync)
 
 
 def unchanged_package(out_dir: Path, stamps: StampStore | None,
@@ -214,72 +188,3 @@ def unchanged_package(out_dir: Path, stamps: StampStore | None,
     if files is None:
         return None
     return GenerationReport(unchanged=[f for f in files if f.name != MANIFEST])
-
-
-def _write_outputs(outputs: dict[str, tuple[bytes, bool]], out_dir: Path,
-                   *, sync: bool = False) -> GenerationReport:
-    """Write the outputs of a generation, after checking that each is ours.
-
-    The manifest is written once, before any file, and lists the new content
-    of each file and what is there now: a run killed half-way leaves every
-    file it wrote, or had not yet replaced, known as generated.
-    """
-    report = GenerationReport()
-    manifest_path = out_dir / MANIFEST
-    previous = read_manifest(manifest_path)
-    report.removed += remove_leftovers(out_dir, previous)
-    pending: Manifest = {}
-    changes: list[tuple[Path, bytes, bool, bool, bytes | None]] = []
-    refused: list[Diagnostic] = []
-    for relative, (data, executable) in sorted(outputs.items()):
-        path = out_dir / relative
-        current = read_current(path)
-        new = digest(data)
-        if current == data:
-            pending[relative] = {new}
-            if executable and not os.access(path, os.X_OK):
-                changes.append((path, data, executable, True, current))
-            else:
-                report.unchanged.append(path)
-            continue
-        if current is None:
-            pending[relative] = {new}
-            changes.append((path, data, executable, True, current))
-            continue
-        old = digest(current)
-        owned = relative in previous and (
-            previous[relative] is None or old in (previous[relative] or ()))
-        if not owned and GENERATED_MARKER not in current[:2048]:
-            refused.append(Diagnostic(
-                Location(str(path)), 'refusing to overwrite a file that '
-                'colcon-robmosys did not generate; move it away to let the '
-                'generator write here'))
-            continue
-        pending[relative] = {new, old}
-        changes.append((path, data, executable, owned, current))
-    if refused:
-        raise RobmosysError(refused)
-    stale = []
-    for relative in sorted(previous.keys() - outputs.keys()):
-        path = out_dir / relative
-        if not unchanged_since(path, previous, relative) and \
-                not is_generated(path):
-            # replaced by a file of the user's since: theirs to keep
-            continue
-        pending[relative] = previous[relative]
-        stale.append(path)
-    if pending != previous:
-        write_manifest(manifest_path, pending, sync=sync)
-    for path, data, executable, owned, current in changes:
-        if write_generated(path, data, executable=executable, owned=owned,
-                           sync=sync, current=current):
-            report.written.append(path)
-        else:
-            report.unchanged.append(path)  # only its mode was set
-    for path in stale:
-        if remove_generated(path, out_dir):
-            report.removed.append(path)
-    if sync and (report.written or report.removed):
-        sync_folders([out_dir] + [p.parent for p in report.written] +
-                     [p.parent for p in report.removed if p.parent.is_dir()])
-    return report

@@ -8,7 +8,6 @@ from __future__ import annotations
 import hashlib
 from pathlib import Path
 
-from colcon_robmosys.generators.writer import write_generated
 from colcon_robmosys.mapping.common import GENERATED_BY
 
 #: Lists, inside a generated package, the files the generation wrote.
@@ -37,12 +36,12 @@ def read_manifest(path: Path) -> Manifest:
     return files
 
 
-def write_manifest(path: Path, files: Manifest, *, sync: bool = False) -> None:
-    """Write the manifest of a generation."""
-    write_generated(path, (f'# {GENERATED_NOTE}\n' + ''.join(
+def manifest_bytes(files: Manifest) -> bytes:
+    """Return the content of the manifest of a generation (the writer writes it)."""
+    return (f'# {GENERATED_NOTE}\n' + ''.join(
         f'{value}  {relative}\n' for relative in sorted(files)
         for value in sorted(files[relative] or ())
-    )).encode('utf-8'), owned=True, sync=sync)
+    )).encode('utf-8')
 
 
 def digest(data: bytes) -> str:

@@ -1,16 +1,23 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-"""The one place that writes files: atomic, no-touch, never over user code."""
+"""The one place that writes files: atomic, no-touch, never over user code.
+
+A generation's files go out through :func:`write_outputs`, which keeps the
+manifest of what it wrote and says what it did (:class:`GenerationReport`).
+"""
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 import itertools
 import os
 from pathlib import Path
 from typing import Iterable
 
-from colcon_robmosys.errors import RobmosysError
+from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
+from colcon_robmosys.generators.manifest import (
+    digest, MANIFEST, Manifest, manifest_bytes, read_manifest, unchanged_since)
 from colcon_robmosys.mapping.common import GENERATED_BY
 
 #: Every generated file carries this text in its banner.
@@ -224,3 +231,95 @@ def remove_leftovers(root: Path, manifest: Iterable[str] = ()) -> list[Path]:
                 os.unlink(entry.path)
                 removed.append(Path(entry.path))
     return sorted(removed)
+
+
+@dataclass
+class GenerationReport:
+    """What a generation did."""
+
+    written: list[Path] = field(default_factory=list)
+    unchanged: list[Path] = field(default_factory=list)
+    removed: list[Path] = field(default_factory=list)
+    created_user_files: list[Path] = field(default_factory=list)
+
+
+def write_tree(files: dict[str, tuple[bytes, bool]], out_dir: Path, *,
+               sync: bool = True) -> GenerationReport:
+    """Write files that are not rendered (a copy of a package) as generated ones.
+
+    The manifest records them: writing again replaces only what is unchanged
+    since, and a file of the user's in the way is refused.
+
+    :param files: path relative to out_dir -> content, and whether it is
+      executable
+    """
+    return write_outputs(dict(files), out_dir, sync=sync)
+
+
+def write_outputs(outputs: dict[str, tuple[bytes, bool]], out_dir: Path,
+                  *, sync: bool = False) -> GenerationReport:
+    """Write the outputs of a generation, after checking that each is ours.
+
+    The manifest is written once, before any file, and lists the new content
+    of each file and what is there now: a run killed half-way leaves every
+    file it wrote, or had not yet replaced, known as generated.
+    """
+    report = GenerationReport()
+    manifest_path = out_dir / MANIFEST
+    previous = read_manifest(manifest_path)
+    report.removed += remove_leftovers(out_dir, previous)
+    pending: Manifest = {}
+    changes: list[tuple[Path, bytes, bool, bool, bytes | None]] = []
+    refused: list[Diagnostic] = []
+    for relative, (data, executable) in sorted(outputs.items()):
+        path = out_dir / relative
+        current = read_current(path)
+        new = digest(data)
+        if current == data:
+            pending[relative] = {new}
+            if executable and not os.access(path, os.X_OK):
+                changes.append((path, data, executable, True, current))
+            else:
+                report.unchanged.append(path)
+            continue
+        if current is None:
+            pending[relative] = {new}
+            changes.append((path, data, executable, True, current))
+            continue
+        old = digest(current)
+        owned = relative in previous and (
+            previous[relative] is None or old in (previous[relative] or ()))
+        if not owned and GENERATED_MARKER not in current[:2048]:
+            refused.append(Diagnostic(
+                Location(str(path)), 'refusing to overwrite a file that '
+                'colcon-robmosys did not generate; move it away to let the '
+                'generator write here'))
+            continue
+        pending[relative] = {new, old}
+        changes.append((path, data, executable, owned, current))
+    if refused:
+        raise RobmosysError(refused)
+    stale = []
+    for relative in sorted(previous.keys() - outputs.keys()):
+        path = out_dir / relative
+        if not unchanged_since(path, previous, relative) and \
+                not is_generated(path):
+            # replaced by a file of the user's since: theirs to keep
+            continue
+        pending[relative] = previous[relative]
+        stale.append(path)
+    if pending != previous:
+        write_generated(manifest_path, manifest_bytes(pending), owned=True, sync=sync)
+    for path, data, executable, owned, current in changes:
+        if write_generated(path, data, executable=executable, owned=owned,
+                           sync=sync, current=current):
+            report.written.append(path)
+        else:
+            report.unchanged.append(path)  # only its mode was set
+    for path in stale:
+        if remove_generated(path, out_dir):
+            report.removed.append(path)
+    if sync and (report.written or report.removed):
+        sync_folders([out_dir] + [p.parent for p in report.written] +
+                     [p.parent for p in report.removed if p.parent.is_dir()])
+    return report

@@ -1,7 +1,7 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
-"""What every part of the file builder shares: where problems are recorded."""
+"""What the builders of a file's kinds share: where problems are recorded."""
 
 from __future__ import annotations
 
@@ -19,13 +19,18 @@ MODEL_SECTIONS = ('service_definitions', 'components', 'systems')
 
 
 class BuilderBase:
-    """Record problems at the nodes of a loaded file, model by model."""
+    """Record problems at the nodes of a loaded file, model by model.
 
-    def __init__(self, loaded: LoadedFile) -> None:
+    The builders of one file (model/build.py) record into the same lists.
+    """
+
+    def __init__(self, loaded: LoadedFile, diagnostics: list[Diagnostic] | None = None,
+                 broken_models: set[tuple[str, int]] | None = None) -> None:
         self.loaded = loaded
-        self.diagnostics: list[Diagnostic] = []
+        self.diagnostics: list[Diagnostic] = [] if diagnostics is None else diagnostics
         #: (section, index) of the models a problem was found in
-        self.broken_models: set[tuple[str, int]] = set()
+        self.broken_models: set[tuple[str, int]] = \
+            set() if broken_models is None else broken_models
 
     def error(self, path: NodePath, message: str, *, key: bool = False) -> None:
         """Record a problem at the node of that path, and its model as broken."""

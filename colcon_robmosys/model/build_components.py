@@ -25,8 +25,9 @@ from colcon_robmosys.model.types import (
 class ComponentBuilder(BuilderBase):
     """Components, with the rules a single component has to follow."""
 
-    def _component(self, path: NodePath, raw: RawData,
-                   defaults: RawData) -> Component:
+    def component(self, path: NodePath, raw: RawData,
+                  defaults: RawData) -> Component:
+        """Build the component at the path of the file."""
         info = self._info(path, raw, defaults, 'component')
         name = raw['name']
         self.check_name(path + ('name',), 'component', name, key=False)
@@ -267,8 +268,6 @@ class ComponentBuilder(BuilderBase):
                        f'is greater than its max ({high})')
             return None
         return ParameterSize(low, high)
-
-    # systems ------------------------------------------------------------
 
 
 #: element type of a parameter -> the JSON kind the schema wants of its one_of values

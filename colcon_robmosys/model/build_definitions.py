@@ -21,8 +21,9 @@ from colcon_robmosys.model.types import (
 class DefinitionBuilder(BuilderBase):
     """Service definitions: communication objects, queries, actions, events."""
 
-    def _service_definition(self, path: NodePath, raw: RawData,
-                            defaults: RawData) -> ServiceDefinition:
+    def service_definition(self, path: NodePath, raw: RawData,
+                           defaults: RawData) -> ServiceDefinition:
+        """Build the service definition at the path of the file."""
         info = self._info(path, raw, defaults, 'service definition')
         package = info.name
         seen: dict[str, str] = {}
@@ -165,5 +166,3 @@ class DefinitionBuilder(BuilderBase):
         problem = interface_comment_problem(text) if text else None
         if problem:
             self.error(path, f'{what} {problem}')
-
-    # components ---------------------------------------------------------

@@ -15,6 +15,7 @@ from colcon_robmosys.check.cache import CACHE_DIR
 from colcon_robmosys.check.cache import ModelCache
 from colcon_robmosys.errors import print_diagnostics
 from colcon_robmosys.mapping.backends import prefix_dependencies
+from colcon_robmosys.mapping.common import RUNTIME_PACKAGE
 from colcon_robmosys.mapping.portkinds import port_kind
 from colcon_robmosys.mapping.portkinds import PORT_KINDS
 from colcon_robmosys.model.files import model_dependencies
@@ -26,7 +27,6 @@ from colcon_robmosys.model.types import ServiceDefinition
 from colcon_robmosys.package_identification.robmosys import \
     RobmosysPackageIdentification
 from colcon_robmosys.runtime import installed_runtime
-from colcon_robmosys.runtime import RUNTIME_PACKAGE
 from colcon_robmosys.runtime import runtime_source
 
 logger = colcon_logger.getChild(__name__)

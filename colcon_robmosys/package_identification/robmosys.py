@@ -9,8 +9,8 @@ from colcon_core.package_identification import \
 from colcon_core.plugin_system import satisfies_version
 from colcon_ros.package_identification.ros import get_package_with_build_type
 
+from colcon_robmosys.mapping.common import RUNTIME_PACKAGE
 from colcon_robmosys.model.files import MODEL_FILE_NAME
-from colcon_robmosys.runtime import RUNTIME_PACKAGE
 
 
 class RobmosysPackageIdentification(PackageIdentificationExtensionPoint):

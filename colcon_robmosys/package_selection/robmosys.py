@@ -7,11 +7,11 @@ from colcon_core.logging import colcon_logger
 from colcon_core.package_selection import PackageSelectionExtensionPoint
 from colcon_core.plugin_system import satisfies_version
 
+from colcon_robmosys.check.index import environ_prefixes
+from colcon_robmosys.check.index import search_prefixes
 from colcon_robmosys.mapping.backends import PREFIX_PACKAGES
 from colcon_robmosys.package_discovery.robmosys import checked_result
-from colcon_robmosys.runtime import environ_prefixes
 from colcon_robmosys.runtime import package_markers
-from colcon_robmosys.runtime import search_prefixes
 
 logger = colcon_logger.getChild(__name__)
 

@@ -17,8 +17,8 @@ from pathlib import Path
 import sys
 from types import ModuleType
 
-#: The name of the runtime package.
-RUNTIME_PACKAGE = 'robmosys_runtime'
+from colcon_robmosys.check.index import environ_prefixes, search_prefixes
+from colcon_robmosys.mapping.common import RUNTIME_PACKAGE
 
 
 def runtime_source() -> Path:
@@ -36,36 +36,6 @@ def package_markers(name: str) -> tuple[Path, Path, Path]:
     return (share / 'ament_index' / 'resource_index' / 'packages' / name,
             share / name / 'cmake' / f'{name}Config.cmake',
             share / name / 'cmake' / f'{name}-config.cmake')
-
-
-def environ_prefixes(environ: Mapping[str, str], variable: str) -> list[str]:
-    """Return the prefixes of a path list of the environment, in order."""
-    return [entry for entry in environ.get(variable, '').split(os.pathsep) if entry]
-
-
-def search_prefixes(prefixes: Iterable[Path | str], markers: Iterable[Path],
-                    ignored: Iterable[Path] = ()) -> Path | None:
-    """
-    Return the first prefix that holds one of the markers, resolved, or None.
-
-    The one search of install prefixes of the glue: what provides the
-    runtime, and which packages a component needs of the prefix no prefix
-    provides (package_selection). Not ament_index_python: it reads
-    os.environ's AMENT_PREFIX_PATH only, and knows neither CMAKE_PREFIX_PATH,
-    the prefixes of a workspace's dependencies nor prefixes that do not
-    count.
-
-    :param ignored: prefixes at or below these folders do not count
-    """
-    markers = tuple(markers)
-    skipped = [Path(p).resolve() for p in ignored]
-    for entry in prefixes:
-        prefix = Path(entry).resolve()
-        if any(prefix == s or s in prefix.parents for s in skipped):
-            continue
-        if any((prefix / marker).exists() for marker in markers):
-            return prefix
-    return None
 
 
 def installed_runtime(environ: Mapping[str, str] | None = None,

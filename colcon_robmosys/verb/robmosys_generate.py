@@ -17,13 +17,13 @@ from colcon_robmosys.generators import create_missing_user_files
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
 from colcon_robmosys.generators import write_tree
+from colcon_robmosys.mapping.common import RUNTIME_PACKAGE
 from colcon_robmosys.mapping.distributions import distribution_problem
 from colcon_robmosys.model.schema import schema_path
 from colcon_robmosys.package_discovery.robmosys import checked_result
 from colcon_robmosys.report import report_problem
 from colcon_robmosys.report import write_report
 from colcon_robmosys.runtime import installed_runtime
-from colcon_robmosys.runtime import RUNTIME_PACKAGE
 from colcon_robmosys.runtime import runtime_source
 from colcon_robmosys.verb import add_diagnostics_arguments
 from colcon_robmosys.verb import diagnostics_request

@@ -1,0 +1,112 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+
+"""Build the systems of a file: instances, subsystems, connections."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from colcon_robmosys.errors import Location
+from colcon_robmosys.model.build_base import BuilderBase
+from colcon_robmosys.model.loader import NodePath, RawData
+from colcon_robmosys.model.types import (
+    Connection, Instance, PortRef, QoSOverride, Subsystem, System)
+
+
+class SystemBuilder(BuilderBase):
+    """Systems, with the rules a single system has to follow."""
+
+    def system(self, path: NodePath, raw: RawData, defaults: RawData) -> System:
+        """Build the system at the path of the file."""
+        info = self._info(path, raw, defaults, 'system')
+        name = raw.get('name') or _camel(info.name)
+        if 'name' in raw:
+            self.check_name(path + ('name',), 'system', name, key=False)
+        instances = []
+        for iname, body in raw.get('instances', {}).items():
+            ipath = path + ('instances', iname)
+            self.check_name(ipath, 'instance', iname)
+            namespace = body.get('namespace', '')
+            if namespace and not namespace.startswith('/'):
+                namespace = '/' + namespace
+            parameters = tuple(body.get('parameters', {}).items())
+            instances.append(Instance(
+                iname, body['component'], namespace.rstrip('/'), parameters,
+                body.get('activate', True), tuple(body.get('after', ())),
+                body.get('description', ''), self.at(ipath, key=True),
+                tuple(self.at(ipath + ('parameters', n), key=True)
+                      for n, _ in parameters),
+                bool(body.get('respawn', False)), body.get('timeout'),
+                body.get('host', ''), qos=self._qos_overrides(ipath, body),
+                after_locations=self.at_each(ipath + ('after',), body.get('after', ())),
+                parameter_entry_locations=self._entries(ipath + ('parameters',), parameters),
+                unconnected=tuple(body.get('unconnected', ())),
+                quiet=tuple(body.get('quiet', ())),
+                watch_locations=(
+                    self.at_each(ipath + ('unconnected',), body.get('unconnected', ())) +
+                    self.at_each(ipath + ('quiet',), body.get('quiet', ())))))
+        hosts = {i.host for i in instances if i.host}
+        for instance in instances:
+            if instance.name.startswith('on_') and instance.name[3:] in hosts:
+                # <system>.on_<host>.launch.py starts the instances of a host
+                self.error(path + ('instances', instance.name),
+                           f"instance name '{instance.name}' is the name of the launch "
+                           f"files of the host '{instance.name[3:]}'", key=True)
+        subsystems = []
+        for sname, body in raw.get('subsystems', {}).items():
+            spath = path + ('subsystems', sname)
+            self.check_name(spath, 'subsystem', sname)
+            if sname in raw.get('instances', {}):
+                self.error(spath, f"subsystem '{sname}' has the name of an instance",
+                           key=True)
+            namespace = body.get('namespace', sname)
+            subsystems.append(Subsystem(
+                sname, body['system'], '/' + namespace.strip('/') if namespace.strip('/')
+                else '', self.at(spath, key=True)))
+        if not raw.get('instances') and not subsystems:
+            self.error(path, "a system has 'instances' or 'subsystems'", key=True)
+        connections = []
+        for index, body in enumerate(raw.get('connections', [])):
+            cpath = path + ('connections', index)
+
+            def ref(end: str) -> PortRef:
+                # subsystem.instance.port: the instance is subsystem.instance
+                instance, port = body[end].rsplit('.', 1)
+                return PortRef(instance, port, self.at(cpath + (end,)))
+
+            ends = [end for end in ('from', 'to') if end in body]
+            if not ends or (len(ends) == 1 and 'topic' not in body):
+                self.error(cpath, "a connection joins 'from' and 'to', or one port and "
+                           "a 'topic' (a ROS 2 name outside the model)", key=True)
+                continue
+            connections.append(Connection(ref(ends[0]), ref(ends[-1]) if len(ends) == 2
+                                          else None, body.get('topic'),
+                                          self.at(cpath, key=True)))
+        everywhere = tuple(raw.get('parameters', {}).items())
+        return System(info, name, tuple(instances), tuple(connections),
+                      self.at(path + ('package',)),
+                      raw.get('processes', 'per_instance'), tuple(subsystems), everywhere,
+                      tuple(self.at(path + ('parameters', n), key=True) for n, _ in everywhere),
+                      self._entries(path + ('parameters',), everywhere))
+
+    def _entries(self, path: NodePath, values: tuple[tuple[str, Any], ...]
+                 ) -> tuple[tuple[Location, ...], ...]:
+        """Return where each element of each list value stands (none for a scalar)."""
+        return tuple(self.at_each(path + (name,), value) if isinstance(value, list) else ()
+                     for name, value in values)
+
+    def _qos_overrides(self, path: NodePath, raw: RawData) -> tuple[QoSOverride, ...]:
+        """Return the QoS an instance gives its ports (``qos: {port: {policy: value}}``)."""
+        overrides = []
+        for port, policies in raw.get('qos', {}).items():
+            if policies.get('history') == 'keep_all' and 'depth' in policies:
+                self.error(path + ('qos', port, 'depth'), f"instance '{path[-1]}', port "
+                           f"'{port}': 'depth' has no meaning with history 'keep_all'")
+            overrides.append(QoSOverride(port, tuple(policies.items()),
+                                         self.at(path + ('qos', port), key=True)))
+        return tuple(overrides)
+
+
+def _camel(package: str) -> str:
+    return ''.join(part.capitalize() for part in package.split('_'))
