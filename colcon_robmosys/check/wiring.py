@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from colcon_robmosys.check.activities import system_executor_problems
 from colcon_robmosys.check.parameters import everywhere_problems, override_problems
 from colcon_robmosys.check.qos import End, QoSRules, with_article as _a
 from colcon_robmosys.errors import Location
@@ -69,6 +70,7 @@ class WiringRules(QoSRules):
                                f"instance '{instance.name}' is activated "
                                f"after '{after}', but '{unmanaged.name}' is "
                                f'not activated by the system {why}')
+        self.diagnostics += system_executor_problems(system, components)
         connected: set[tuple[str, str]] = set()
         names = _Names()
         for connection in system.connections:

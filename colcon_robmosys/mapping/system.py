@@ -14,6 +14,7 @@ from colcon_robmosys.mapping.common import (
     Banner, banner_of, INSTALLED_MODEL, INSTALLED_MODEL_HEADER_LINES, package_xml, PackageXml,
     RUNTIME_PACKAGE, unique)
 from colcon_robmosys.mapping.conformance import watched_instances, WatchedInstance
+from colcon_robmosys.mapping.executors import shared_executors
 from colcon_robmosys.mapping.connections import (
     connection_topics, node_fqn, provided_end, system_connections, SystemConnection)
 from colcon_robmosys.mapping.launch import (
@@ -93,6 +94,8 @@ class SystemPackage:
     #: each model file of the workspace -> its installed copy (share/<package>/...), where
     #: bringup.json's locations point: they hold no path of the machine that built them
     model_files: tuple[tuple[str, str], ...] = ()
+    #: language -> the executor of its shared process (mapping/executors.py)
+    executors: tuple[tuple[str, str], ...] = ()
 
     @property
     def bringup_description(self) -> str:
@@ -128,7 +131,7 @@ class SystemPackage:
                        for c in self.connections]
         return json.dumps({'generated_by': ' '.join(self.banner.lines),
                            'package': self.package, 'params_file': PARAMS_FILE,
-                           'processes': self.processes,
+                           'processes': self.processes, 'executors': dict(self.executors),
                            'instances': instances, 'connections': connections},
                           indent=2, sort_keys=True) + '\n'
 
@@ -310,6 +313,7 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
         processes=system.processes,
         watched=watched_instances(system, components, topics),
         model_files=tuple(sorted(_installed_models(workspace).items())),
+        executors=shared_executors(system.executor, components.values()),
         depends=packages, exec_depends=exec_depends,
         package_xml=package_xml(banner, system.info, buildtool=['ament_cmake'],
                                 exec_=exec_depends,

@@ -13,7 +13,7 @@ from colcon_robmosys.model.build_components import ComponentBuilder
 from colcon_robmosys.model.build_definitions import DefinitionBuilder
 from colcon_robmosys.model.loader import NodePath, RawData
 from colcon_robmosys.model.types import (
-    Connection, Instance, Model, PortRef, QoSOverride, Subsystem, System)
+    Connection, Executor, Instance, Model, PortRef, QoSOverride, Subsystem, System)
 
 
 class FileBuilder(DefinitionBuilder, ComponentBuilder):
@@ -109,7 +109,9 @@ class FileBuilder(DefinitionBuilder, ComponentBuilder):
                       self.at(path + ('package',)),
                       raw.get('processes', 'per_instance'), tuple(subsystems), everywhere,
                       tuple(self.at(path + ('parameters', n), key=True) for n, _ in everywhere),
-                      self._entries(path + ('parameters',), everywhere))
+                      self._entries(path + ('parameters',), everywhere),
+                      Executor(raw['executor']) if 'executor' in raw else None,
+                      self.at(path + ('executor',)) if 'executor' in raw else None)
 
     def _entries(self, path: NodePath, values: tuple[tuple[str, Any], ...]
                  ) -> tuple[tuple[Location, ...], ...]:

@@ -205,9 +205,15 @@ class ComponentNode(LifecycleNode):
 
     def add_periodic(self, activity: str, period: float, functions: Sequence[Function]) -> Timer:
         """Create the timer of a periodic activity: runs from activate to deactivate."""
+        run = self.run_activity_callback(activity, functions)
+
+        def tick() -> None:
+            # no argument: a callback that takes some gets rclpy's TimerInfo
+            # from the EventsExecutor (9.1), and a periodic function takes none
+            run()
         timer = self.create_timer(
-            period, self.run_activity_callback(activity, functions),
-            callback_group=self.activities[activity].callback_group, autostart=False)
+            period, tick, callback_group=self.activities[activity].callback_group,
+            autostart=False)
         self._activity_timers.append(timer)
         return timer
 
