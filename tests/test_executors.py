@@ -59,8 +59,10 @@ def server(executor: str, named: bool) -> dict:
                               '    self.eLevel.fire(Fibonacci.Feedback(sequence=[self.count]))\n'},
             'fAnswer': {'code': 'response.int32_value = request.int32_value * 2\n'
                                 'return response\n'},
-            'fExecute': {'code': 'goal_handle.publish_feedback(Fibonacci.Feedback(sequence=[1]))\n'
-                                 'return Fibonacci.Result(sequence=[goal_handle.request.order])\n'},
+            'fExecute': {'code': 'goal_handle.publish_feedback('
+                                 'Fibonacci.Feedback(sequence=[1]))\n'
+                                 'return Fibonacci.Result('
+                                 'sequence=[goal_handle.request.order])\n'},
             'fCondition': {'code': 'return event.sequence[0] >= activation.order\n'}},
         'lifecycle': {'on_configure': ['fSetUp']},
     }
@@ -120,7 +122,7 @@ def _models() -> dict[str, list[dict]]:
 
 
 def _system() -> dict:
-    """The events pair again, in one shared process on the executor the system names."""
+    """Return the events pair again, in one shared process on the executor the system names."""
     return {'name': 'Shared', 'package': 'exec_shared', 'processes': 'shared',
             'executor': 'events',
             'instances': {'server': {'component': 'exec_server_events'},

@@ -14,9 +14,9 @@ from colcon_robmosys.mapping.common import (
     Banner, banner_of, INSTALLED_MODEL, INSTALLED_MODEL_HEADER_LINES, package_xml, PackageXml,
     RUNTIME_PACKAGE, unique)
 from colcon_robmosys.mapping.conformance import watched_instances, WatchedInstance
-from colcon_robmosys.mapping.executors import shared_executors
 from colcon_robmosys.mapping.connections import (
     connection_topics, node_fqn, provided_end, system_connections, SystemConnection)
+from colcon_robmosys.mapping.executors import shared_executors
 from colcon_robmosys.mapping.launch import (
     launch_files, LaunchFile, PARAMS_FILE, SystemNode)
 from colcon_robmosys.mapping.names import connection_name
