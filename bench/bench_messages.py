@@ -62,13 +62,12 @@ def pair(kind: str, install: Path, burst: int, warmup: float) -> dict[str, list[
     """Return the talker and the listener of a kind, each pinned to a CPU of its own."""
     cmds = commands('generated', install, burst, warmup)
     handwritten = commands('hand-written', install, burst, warmup)
+    # the hand-written talker, on the events executor: it sends the most per CPU second
     talker = handwritten['talker']
-    # the hand-written talker on the events executor: it sends the most per CPU second
-    talker.insert(talker.index('talker') + 1, 'events')
     listener = cmds['listener']
     if kind != 'generated':
         listener = handwritten['listener']
-        listener.insert(listener.index('listener') + 1, HANDWRITTEN_EXECUTOR[kind])
+        listener[listener.index('listener') + 1] = HANDWRITTEN_EXECUTOR[kind]
     cpus = sorted(os.sched_getaffinity(0))
     return {'talker': pinned(cpus[0], talker), 'listener': pinned(cpus[-1], listener)}
 
