@@ -21,6 +21,7 @@ import yaml
 from colcon_robmosys.devtools.ros_env import background
 from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
 from colcon_robmosys.mapping.executors import component_executor, shared_executor
+from colcon_robmosys.mapping.system import ACTION_PARTS
 from colcon_robmosys.model.types import Executor
 from conftest import build_workspace, BuiltWorkspace, requires_ros
 
@@ -192,20 +193,30 @@ def test_every_pattern_works_on_the_executor(built, domain_id, executor):
     for package in (f'exec_server_{suffix}', f'exec_client_{suffix}'):
         node = (install / package / 'lib').glob('python*/site-packages/*/*.py')
         assert any(f"executor_name = '{executor}'" in p.read_text() for p in node), package
+    remap = ['-r', 'rCount:=pCount', '-r', 'rAdd:=qAdd']
+    for source, target in (('rFib', 'aFib'), ('rLevel', 'eLevel')):
+        # Jazzy remaps the topics and services of an action, not its name (docs/distributions.md)
+        remap += ['-r', f'{source}:={target}'] + [
+            arg for part in ACTION_PARTS for arg in ('-r', f'{source}/{part}:={target}/{part}')]
     with contextlib.ExitStack() as stack:
         processes = {
             role: stack.enter_context(background(_executable(
                 install, f'exec_{role}_{suffix}', role.capitalize()) + [
-                '--ros-args', '-r', f'__node:={role}', '-r', 'rCount:=pCount', '-r',
-                'rAdd:=qAdd', '-r', 'rFib:=aFib', '-r', 'rLevel:=eLevel'], env=env))
+                '--ros-args', '-r', f'__node:={role}', *remap], env=env))
             for role in ('server', 'client')}
         driver = stack.enter_context(LifecycleDriver(domain_id))
 
         def output() -> str:
             return '\n'.join(f'--- {r}:\n{p.output()}' for r, p in processes.items())
+
+        def change(role: str, label: str) -> bool:
+            try:
+                return driver.transition(f'/{role}', label)
+            except TimeoutError as error:
+                raise AssertionError(f'{error}\n{output()}') from None
         for transition in ('configure', 'activate'):
             for role in ('server', 'client'):
-                assert driver.transition(f'/{role}', transition), output()
+                assert change(role, transition), output()
         client_output = processes['client'].output
         assert wait_until(lambda: all(_worked(client_output()).values()), 60), output()
         if executor == 'multi-threaded':
@@ -214,14 +225,14 @@ def test_every_pattern_works_on_the_executor(built, domain_id, executor):
         # the ports go and come back: cleanup and configure again on the same executor
         for transition in ('deactivate', 'cleanup'):
             for role in ('client', 'server'):
-                assert driver.transition(f'/{role}', transition), output()
+                assert change(role, transition), output()
         before = client_output().count('answer 42')
         for transition in ('configure', 'activate'):
             for role in ('server', 'client'):
-                assert driver.transition(f'/{role}', transition), output()
+                assert change(role, transition), output()
         assert wait_until(lambda: client_output().count('answer 42') > before, 30), output()
         for role in ('client', 'server'):
-            assert driver.transition(f'/{role}', 'deactivate'), output()
+            assert change(role, 'deactivate'), output()
         for process in processes.values():
             assert 'Traceback' not in process.output(), output()
 
