@@ -6,8 +6,9 @@ Compares a generated Python publisher/subscriber pair (two component models,
 built with colcon in a temporary workspace) with the hand-written rclpy lifecycle
 pair of ``handwritten_pubsub.py``: same message type (std_msgs/msg/Header, the
 stamp carries the send time), QoS (keep_last 10, reliable, volatile), timer period
-(10 ms), callback groups and executor (MultiThreadedExecutor), and the same code in
-the timer and the subscription. Both pairs run as real processes on loopback DDS,
+(10 ms), callback groups and executor (the generated pair's default, rclpy's
+EventsExecutor: neither makes a blocking call), and the same code in the timer and
+the subscription. Both pairs run as real processes on loopback DDS,
 each in a ROS domain of its own, configured and activated through their lifecycle
 services, in alternation. Two loads:
 
@@ -52,6 +53,8 @@ from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
 from colcon_robmosys.package_selection.robmosys import missing_prefix_packages
 
 HANDWRITTEN = REPO / 'bench' / 'handwritten_pubsub.py'
+#: the executor of the hand-written Python pair: the one the generated pair gets by default
+HANDWRITTEN_EXECUTOR = 'events'
 #: the ament_cmake package of the hand-written C++ pair
 HANDWRITTEN_CPP = REPO / 'bench' / 'handwritten_cpp'
 #: the user code (implementation files) of the generated C++ pair
@@ -199,8 +202,8 @@ def commands(kind: str, install: Path, burst: int, warmup: float) -> dict[str, l
                      'pubsub')
         talker, listener = [pubsub, 'talker'], [pubsub, 'listener']
     else:
-        talker = [sys.executable, str(HANDWRITTEN), 'talker']
-        listener = [sys.executable, str(HANDWRITTEN), 'listener']
+        talker = [sys.executable, str(HANDWRITTEN), 'talker', HANDWRITTEN_EXECUTOR]
+        listener = [sys.executable, str(HANDWRITTEN), 'listener', HANDWRITTEN_EXECUTOR]
     return {
         'talker': talker + ['--ros-args', '-r', '__node:=talker', '-p', f'burst:={burst}',
                             '-r', f'pSample:={TOPIC}'],

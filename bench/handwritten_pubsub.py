@@ -3,11 +3,14 @@
 """A hand-written rclpy lifecycle publisher/subscriber pair: the reference of bench_runtime.
 
 It does what the generated pair of ``bench_runtime.py`` does, the way one would write
-it by hand: the same message type (std_msgs/msg/Header), QoS, period, callback groups
-and executor (MultiThreadedExecutor), entities created on configure, the timer started
-on activate; the same code in the timer and the subscription; the same report.
+it by hand: the same message type (std_msgs/msg/Header), QoS, period, callback groups,
+entities created on configure, the timer started on activate; the same code in the
+timer and the subscription; the same report. The executor is the second argument:
+``multi-threaded`` (the default: rclpy's MultiThreadedExecutor), ``events``
+(rclpy.experimental.EventsExecutor) or ``default`` (``rclpy.spin(node)``, rclpy's
+SingleThreadedExecutor, as the ROS 2 tutorials write it).
 
-    python handwritten_pubsub.py talker|listener --ros-args -p burst:=100 ...
+    python handwritten_pubsub.py talker|listener [EXECUTOR] --ros-args -p burst:=100 ...
 """
 
 from __future__ import annotations
@@ -24,6 +27,7 @@ from rclpy.lifecycle import TransitionCallbackReturn
 from rclpy.qos import (
     DurabilityPolicy, HistoryPolicy, LivelinessPolicy, QoSProfile, ReliabilityPolicy)
 from rclpy.subscription import Subscription
+from rclpy.task import Future
 from rclpy.timer import Timer
 from std_msgs.msg import Header
 
@@ -175,10 +179,31 @@ def main() -> None:
     """Spin the talker or the listener until SIGINT or SIGTERM, then shut down cleanly."""
     rclpy.init(args=sys.argv)
     node = {'talker': Talker, 'listener': Listener}[sys.argv[1]]()
-    executor = MultiThreadedExecutor()
+    kind = sys.argv[2] if len(sys.argv) > 2 and sys.argv[2] != '--ros-args' else \
+        'multi-threaded'
+    if kind == 'default':
+        try:
+            rclpy.spin(node)
+        except (KeyboardInterrupt, ExternalShutdownException):
+            pass
+        finally:
+            node.destroy_node()
+            rclpy.try_shutdown()
+        return
+    if kind == 'events':
+        from rclpy.experimental import EventsExecutor
+        executor = EventsExecutor()
+    else:
+        executor = MultiThreadedExecutor()
     executor.add_node(node)
     try:
-        executor.spin()
+        if kind == 'events':
+            # an untimed spin() of the EventsExecutor of the ros-* wheels (rclpy
+            # 7.1.6, 9.1.2) runs no callback: spun for an hour at a time
+            while rclpy.ok():
+                executor.spin_until_future_complete(Future(), timeout_sec=3600.0)
+        else:
+            executor.spin()
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:

@@ -24,6 +24,7 @@ import bench_bringup  # noqa: E402
 import bench_colcon  # noqa: E402
 import bench_cppbuild  # noqa: E402
 import bench_generation  # noqa: E402
+import bench_messages  # noqa: E402
 import bench_runtime  # noqa: E402
 import bench_watch  # noqa: E402
 from colcon_robmosys.check import find_model_files, load_workspace  # noqa: E402
@@ -101,6 +102,21 @@ def test_runtime_benchmark_prints_ratios(capsys):
         assert received and int(received.group(1)) >= 2, out
     assert len(re.findall(rf'^\| throughput .* {RATIO} +\|', out, re.MULTILINE)) == 4, out
     assert 'C++: skipped: ' in out
+
+
+@requires_ros
+@pytest.mark.integration
+def test_messages_benchmark_prints_its_goals(capsys):
+    """The three listeners receive, pinned; every goal is printed met or NOT met."""
+    assert bench_messages.main(['--rounds', '1', '--seconds', '0.5', '--warmup', '0.2',
+                                '--burst', '2']) == 0
+    out = capsys.readouterr().out
+    if 'skipped: needs taskset' in out:
+        pytest.skip('needs taskset and two CPUs')
+    for kind in bench_messages.KINDS:
+        received = re.findall(rf'round 1, [^,]+, {kind}: (\d+)/s received', out)
+        assert len(received) == 3 and all(int(r) > 0 for r in received), out
+    assert len(re.findall(r': (met|NOT met)$', out, re.MULTILINE)) == 5, out
 
 
 @requires_ros

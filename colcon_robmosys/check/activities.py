@@ -10,8 +10,9 @@ so every activity that runs it must hand it the same thing.
 from __future__ import annotations
 
 from colcon_robmosys.errors import Diagnostic
+from colcon_robmosys.mapping.executors import blocking_calls, BlockingCall
 from colcon_robmosys.mapping.portkinds import port_kind, PORT_KINDS
-from colcon_robmosys.model.types import Component, Pattern
+from colcon_robmosys.model.types import Component, Executor, Pattern, System
 
 #: the order patterns are named in
 _PATTERN_ORDER = [p.value for p in Pattern]
@@ -65,7 +66,7 @@ def activity_problems(component: Component) -> list[Diagnostic]:
                 port.location, f'provided {port.pattern.value} port '
                 f"'{port.name}' needs an activity triggered by it to answer"))
     if not problems:
-        problems += signature_problems(component)
+        problems += signature_problems(component) + executor_problems(component)
     return problems
 
 
@@ -115,3 +116,53 @@ def signature_problems(component: Component) -> list[Diagnostic]:
                 f'{other[1]}, which deliver different things; a function '
                 'has one signature: give each its own function'))
     return problems
+
+
+def _blocking_words(call: BlockingCall) -> str:
+    kind = port_kind(call.port)
+    who = (f"function '{call.function.name}' calls" if call.function is not None
+           else 'functions written in the implementation file may call')
+    return (f"{who} {call.method}() of port '{call.port.name}' "
+            f'({kind.role.value} {kind.pattern.value}), which waits for an answer '
+            'that another thread of the executor delivers')
+
+
+def executor_problems(component: Component) -> list[Diagnostic]:
+    """Return the executor the model names if the component cannot run on it.
+
+    The events and the single-threaded executor run every callback on one
+    thread: a function that blocks in a call from a callback would wait for
+    an answer that nothing takes (see mapping/executors.py).
+    """
+    if component.executor in (None, Executor.MULTI_THREADED):
+        return []
+    calls = blocking_calls(component)
+    if not calls:
+        return []
+    assert component.executor is not None and component.executor_location is not None
+    return [Diagnostic(
+        component.executor_location,
+        f"component '{component.name}' cannot run on the {component.executor.value} "
+        f'executor: {_blocking_words(calls[0])}; it needs executor: multi-threaded '
+        '(or only the asynchronous calls call_async and send_goal_async)')]
+
+
+def system_executor_problems(system: System, components: dict[str, Component]
+                             ) -> list[Diagnostic]:
+    """Return the executor a system names for its shared processes if an instance cannot run on it.
+
+    :param components: instance name -> its component
+    """
+    if system.executor in (None, Executor.MULTI_THREADED):
+        return []
+    assert system.executor is not None and system.executor_location is not None
+    for instance, component in components.items():
+        calls = [] if component.external else blocking_calls(component)
+        if calls:
+            return [Diagnostic(
+                system.executor_location,
+                f"the shared processes of system '{system.name}' cannot run on the "
+                f"{system.executor.value} executor: in instance '{instance}' (component "
+                f"'{component.name}'), {_blocking_words(calls[0])}; they need executor: "
+                'multi-threaded')]
+    return []

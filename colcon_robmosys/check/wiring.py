@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from colcon_robmosys.check.activities import system_executor_problems
 from colcon_robmosys.check.context import CheckContext
 from colcon_robmosys.check.parameters import everywhere_problems, override_problems
 from colcon_robmosys.check.qos import (
@@ -81,6 +82,7 @@ def _check_system(ctx: CheckContext, system: System) -> None:
                           f"instance '{instance.name}' is activated "
                           f"after '{after}', but '{unmanaged.name}' is "
                           f'not activated by the system {why}')
+    ctx.diagnostics += system_executor_problems(system, components)
     connected: set[tuple[str, str]] = set()
     names = _Names()
     for connection in system.connections:

@@ -14,11 +14,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from colcon_robmosys.errors import Location, RobmosysError
+from colcon_robmosys.mapping.executors import component_executor
 from colcon_robmosys.mapping.portkinds import (
     Delivery, Entity, PORT_KINDS, PortKind, Returns)
 from colcon_robmosys.model.files import model_dependencies
 from colcon_robmosys.model.types import (
-    Component, Function, InterfaceRef, Language, Parameter, PATTERN_INTERFACE,
+    Component, Executor, Function, InterfaceRef, Language, Parameter, PATTERN_INTERFACE,
     QoS)
 
 
@@ -91,6 +92,8 @@ class ComponentPlan:
     lifecycle: tuple[tuple[str, tuple[str, ...]], ...]
     #: interface packages and others the model depends on
     depends: tuple[str, ...]
+    #: what spins the node in a process of its own (mapping/executors.py)
+    executor: Executor = Executor.MULTI_THREADED
 
     @property
     def entities(self) -> frozenset[Entity]:
@@ -178,7 +181,8 @@ def plan_component(component: Component) -> ComponentPlan:
                         for f in component.functions),
         parameters=component.parameters,
         lifecycle=component.lifecycle,
-        depends=tuple(model_dependencies(component)))
+        depends=tuple(model_dependencies(component)),
+        executor=component_executor(component))
 
 
 def _function(function: Function, ports: list[PortPlan],

@@ -135,6 +135,9 @@ class ComponentContext:
     has_impl: bool
     #: the executor threads its process needs at least (ComponentPlan.threads)
     threads: int
+    #: what spins the node in a process of its own: events, single-threaded or
+    #: multi-threaded (ComponentPlan.executor)
+    executor: str
     #: transition -> functions run on it (the transitions that run any)
     lifecycle: Mapping[str, tuple[str, ...]]
     #: where the user's files are, next to the model
@@ -172,7 +175,7 @@ def component_context(context: type[Context], component: Component, plan: Compon
     banner = banner_of(component)
     return context(
         banner=banner, package=plan.package, cls=plan.cls, node_cls=plan.node_cls,
-        has_impl=plan.has_impl, threads=plan.threads,
+        has_impl=plan.has_impl, threads=plan.threads, executor=plan.executor.value,
         lifecycle={t: f for t, f in plan.lifecycle if f}, folders=folders,
         package_xml=package_xml(banner, component.info, **xml),
         validates=any(p.validate for p in plan.parameters),

@@ -96,6 +96,9 @@ class PortKind:
     unique_server: bool = False
     #: the data of its pattern flows to the provided end (diagram arrows)
     data_to_provider: bool = False
+    #: its methods that wait for an answer the executor delivers: a function that
+    #: calls one needs a thread of the executor to be free meanwhile
+    blocking_calls: tuple[str, ...] = ()
 
     @property
     def triggers(self) -> bool:
@@ -122,7 +125,8 @@ _ROWS = (
              unique_server=True, data_to_provider=True),
     PortKind(Pattern.QUERY, Role.REQUIRED, Entity.CLIENT, Delivery.ANSWER,
              'each answer of an asynchronous call', _COMMOBJ, Returns.NOTHING,
-             own_group=True, runtime_class=True, data_to_provider=True),
+             own_group=True, runtime_class=True, data_to_provider=True,
+             blocking_calls=('call',)),
     PortKind(Pattern.ACTION, Role.PROVIDED, Entity.ACTION_SERVER, Delivery.GOAL,
              'each goal, returning the result', ('goal_handle',), Returns.RESULT,
              needs_handler=True, one_function=True, uses_actions=True,
@@ -130,7 +134,7 @@ _ROWS = (
     PortKind(Pattern.ACTION, Role.REQUIRED, Entity.ACTION_CLIENT, Delivery.RESULT,
              'each result of a goal sent', _COMMOBJ, Returns.NOTHING,
              own_group=True, uses_actions=True, runtime_class=True,
-             data_to_provider=True),
+             data_to_provider=True, blocking_calls=('send_goal',)),
     PortKind(Pattern.EVENT, Role.PROVIDED, Entity.EVENT_SERVER, Delivery.ACTIVATION,
              'the condition of each activation', ('activation', 'event'),
              Returns.CONDITION, one_function=True, topic_qos=True,

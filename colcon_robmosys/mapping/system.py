@@ -17,6 +17,7 @@ from colcon_robmosys.mapping.conformance import watched_instances, WatchedInstan
 from colcon_robmosys.mapping.connections import (
     connection_topics, node_fqn, provided_end, system_connections, SystemConnection)
 from colcon_robmosys.mapping.declared import declared_parameters, DeclaredParameter
+from colcon_robmosys.mapping.executors import shared_executors
 from colcon_robmosys.mapping.launch import (
     launch_files, LaunchFile, PARAMS_FILE, SystemNode)
 from colcon_robmosys.mapping.names import connection_name
@@ -96,6 +97,8 @@ class SystemPackage:
     model_files: tuple[tuple[str, str], ...] = ()
     #: per instance: the parameters its node declares (what a parameter file may set)
     declared: tuple[tuple[str, tuple[DeclaredParameter, ...]], ...] = ()
+    #: language -> the executor of its shared process (mapping/executors.py)
+    executors: tuple[tuple[str, str], ...] = ()
 
     @property
     def bringup_description(self) -> str:
@@ -133,7 +136,7 @@ class SystemPackage:
                        for c in self.connections]
         return json.dumps({'generated_by': ' '.join(self.banner.lines),
                            'package': self.package, 'params_file': PARAMS_FILE,
-                           'processes': self.processes,
+                           'processes': self.processes, 'executors': dict(self.executors),
                            'instances': instances, 'connections': connections},
                           indent=2, sort_keys=True) + '\n'
 
@@ -317,6 +320,7 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
         model_files=tuple(sorted(_installed_models(workspace).items())),
         declared=tuple((i.name, declared_parameters(i, components[i.name], topics))
                        for i in system.instances),
+        executors=shared_executors(system.executor, components.values()),
         depends=packages, exec_depends=exec_depends,
         package_xml=package_xml(banner, system.info, buildtool=['ament_cmake'],
                                 exec_=exec_depends,

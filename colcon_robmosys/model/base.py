@@ -35,6 +35,14 @@ class Language(str, Enum):
     CPP = 'cpp'
 
 
+class Executor(str, Enum):
+    """What runs the callbacks of a process: one thread on events, one on a wait set, or many."""
+
+    EVENTS = 'events'
+    SINGLE_THREADED = 'single-threaded'
+    MULTI_THREADED = 'multi-threaded'
+
+
 class InterfaceKind(str, Enum):
     """The kind of a ROS 2 interface file."""
 

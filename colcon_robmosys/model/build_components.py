@@ -18,7 +18,7 @@ from colcon_robmosys.model.loader import NodePath, RawData
 from colcon_robmosys.model.parameters import (
     freeze_parameter_value, parameter_value_problem, PARAMETER_ZERO, rule_problem)
 from colcon_robmosys.model.types import (
-    Activity, Component, Function, Language, LIFECYCLE_TRANSITIONS, Parameter,
+    Activity, Component, Executor, Function, Language, LIFECYCLE_TRANSITIONS, Parameter,
     ParameterRange, ParameterSize, Pattern, PATTERN_INTERFACE, Port, QoS, Role)
 
 
@@ -90,7 +90,7 @@ class ComponentBuilder(BuilderBase):
                            f"port '{port.name}': only the port of an external component "
                            'has a name of its own (a generated node uses the port name)')
         if external:
-            for section in ('activities', 'functions', 'lifecycle'):
+            for section in ('activities', 'functions', 'lifecycle', 'executor'):
                 if raw.get(section):
                     # nothing is generated: no code of the model would run
                     self.error(path + (section,), f"external component '{name}' has no "
@@ -98,7 +98,9 @@ class ComponentBuilder(BuilderBase):
         return Component(info, name, language, ports, tuple(activities),
                          functions, parameters, tuple(lifecycle),
                          self.at(path + ('name',)), external.get('executable', ''),
-                         bool(external.get('lifecycle', True)))
+                         bool(external.get('lifecycle', True)),
+                         Executor(raw['executor']) if 'executor' in raw else None,
+                         self.at(path + ('executor',)) if 'executor' in raw else None)
 
     def _check_member_names(
             self, path: NodePath, ports: tuple[Port, ...],

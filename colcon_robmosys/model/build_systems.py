@@ -11,7 +11,7 @@ from colcon_robmosys.errors import Location
 from colcon_robmosys.model.build_base import BuilderBase
 from colcon_robmosys.model.loader import NodePath, RawData
 from colcon_robmosys.model.types import (
-    Connection, Instance, PortRef, QoSOverride, Subsystem, System)
+    Connection, Executor, Instance, PortRef, QoSOverride, Subsystem, System)
 
 
 class SystemBuilder(BuilderBase):
@@ -88,7 +88,9 @@ class SystemBuilder(BuilderBase):
                       self.at(path + ('package',)),
                       raw.get('processes', 'per_instance'), tuple(subsystems), everywhere,
                       tuple(self.at(path + ('parameters', n), key=True) for n, _ in everywhere),
-                      self._entries(path + ('parameters',), everywhere))
+                      self._entries(path + ('parameters',), everywhere),
+                      Executor(raw['executor']) if 'executor' in raw else None,
+                      self.at(path + ('executor',)) if 'executor' in raw else None)
 
     def _entries(self, path: NodePath, values: tuple[tuple[str, Any], ...]
                  ) -> tuple[tuple[Location, ...], ...]:

@@ -10,7 +10,7 @@ from typing import Any, Union
 
 from colcon_robmosys.errors import Location
 from colcon_robmosys.model.base import (
-    InterfaceRef, Language, PackageInfo, Pattern, Role)
+    Executor, InterfaceRef, Language, PackageInfo, Pattern, Role)
 
 
 @dataclass(frozen=True)
@@ -143,6 +143,9 @@ class Component:
     executable: str = ''
     #: whether the node is a lifecycle node (always, for a generated one)
     lifecycle_node: bool = True
+    #: the executor the model names for its process (None: the mapping's default)
+    executor: Executor | None = None
+    executor_location: Location | None = None
 
     @property
     def external(self) -> bool:

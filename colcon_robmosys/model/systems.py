@@ -9,7 +9,7 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 from colcon_robmosys.errors import Location
-from colcon_robmosys.model.base import PackageInfo
+from colcon_robmosys.model.base import Executor, PackageInfo
 from colcon_robmosys.model.components import QoS
 
 
@@ -155,6 +155,9 @@ class System:
     parameter_locations: tuple[Location, ...] = ()
     #: where each element of each of those values stands (none for a scalar)
     parameter_entry_locations: tuple[tuple[Location, ...], ...] = ()
+    #: the executor of its shared processes the model names (None: the mapping's default)
+    executor: Executor | None = None
+    executor_location: Location | None = None
 
     @property
     def package(self) -> str:

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from typing import Union
 
 from colcon_robmosys.model.base import (
-    InterfaceKind, InterfaceRef, Language, LIFECYCLE_TRANSITIONS, Maintainer,
+    Executor, InterfaceKind, InterfaceRef, Language, LIFECYCLE_TRANSITIONS, Maintainer,
     PackageInfo, Pattern, PATTERN_INTERFACE, Role)
 from colcon_robmosys.model.components import (
     Activity, Component, Function, Parameter, ParameterRange, ParameterSize,
@@ -27,7 +27,7 @@ from colcon_robmosys.model.systems import (
 __all__ = [
     'Action', 'Activity', 'CommunicationObject', 'Component', 'Connection',
     'Constant', 'Event', 'Field', 'FieldType', 'Function', 'Instance',
-    'InterfaceKind', 'InterfaceRef', 'Language', 'LIFECYCLE_TRANSITIONS',
+    'Executor', 'InterfaceKind', 'InterfaceRef', 'Language', 'LIFECYCLE_TRANSITIONS',
     'Maintainer', 'Model', 'model_key', 'ModelFile', 'PackageInfo', 'Parameter',
     'ParameterRange', 'ParameterSize', 'ParameterValue', 'Pattern', 'PATTERN_INTERFACE',
     'Port', 'PortRef', 'QoS', 'QoSOverride', 'Query', 'Role',

@@ -20,7 +20,8 @@ if TYPE_CHECKING:
     from robmosys_runtime.events import (  # noqa: F401
         copy_fields, EventActivation, EventClient, EventServer)
     from robmosys_runtime.main import executor_threads, run  # noqa: F401
-    from robmosys_runtime.node import Activity, ComponentNode  # noqa: F401
+    from robmosys_runtime.activity import Activity  # noqa: F401
+    from robmosys_runtime.node import ComponentNode  # noqa: F401
     from robmosys_runtime.parameters import ParameterRule, ParameterRules  # noqa: F401
     from robmosys_runtime.ports import ActionClientPort, QueryClient, wait_for  # noqa: F401
 
@@ -28,7 +29,7 @@ __version__ = '0.1.0'
 
 #: each name of the package -> the module that defines it
 _MODULES = {
-    'ActionClientPort': 'ports', 'Activity': 'node', 'ComponentNode': 'node',
+    'ActionClientPort': 'ports', 'Activity': 'activity', 'ComponentNode': 'node',
     'EventActivation': 'events', 'EventClient': 'events', 'EventServer': 'events',
     'ParameterRule': 'parameters', 'ParameterRules': 'parameters', 'QueryClient': 'ports',
     'copy_fields': 'events', 'executor_threads': 'main', 'run': 'main', 'wait_for': 'ports',

@@ -6,7 +6,8 @@ Several Python instances of a system in one process (``processes: shared``).
 ``python -m robmosys_runtime.container DESCRIPTION PARAMS_FILE INSTANCE...``
 creates the node of each instance from its component's class, with the name,
 namespace, remappings and parameter file the launch files would give it, and
-spins them all on one multi-threaded executor (:func:`run_nodes`). Starting a
+spins them all on one executor (:func:`run_nodes`): the one the system names for
+its shared processes, or the most capable one its instances need. Starting a
 Python node costs most of its start-up time in the interpreter and rclpy:
 one process for many instances starts a large system several times faster.
 """
@@ -40,13 +41,15 @@ def main(argv: Optional[List[str]] = None) -> int:
     """Run the instances named on the command line; return the exit status."""
     description_file, params_file, *names = sys.argv[1:] if argv is None else argv
     with open(description_file, encoding='utf-8') as stream:
-        instances = {i['instance']: i for i in json.load(stream)['instances']}
+        description = json.load(stream)
+    instances = {i['instance']: i for i in description['instances']}
     unknown = [n for n in names if n not in instances or not instances[n].get('python_class')]
     if unknown or not names:
         print(f"container: error: not Python instances of the system: {', '.join(unknown)}"
               if unknown else 'container: error: no instance named', file=sys.stderr)
         return 2
-    return run_nodes([node_factory(instances[n], params_file) for n in names])
+    return run_nodes([node_factory(instances[n], params_file) for n in names],
+                     executor_name=description.get('executors', {}).get('python'))
 
 
 if __name__ == '__main__':

@@ -1,6 +1,6 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
-"""The process of a component: one node on a multi-threaded executor."""
+"""The process of a component: its node on the executor its model names."""
 
 from __future__ import annotations
 
@@ -8,17 +8,53 @@ import os
 import signal
 import threading
 from types import FrameType
-from typing import Callable, List, Optional, Sequence
+from typing import Any, Callable, List, Optional, Sequence
 
 import rclpy
 from rclpy.exceptions import InvalidHandle
-from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
+from rclpy.executors import Executor, ExternalShutdownException, MultiThreadedExecutor
+from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
+from rclpy.task import Future
 
 
 #: the threads a node needs beside the others of its process, when it does not
 #: say (a node not generated from a model): threads to spare for blocking calls
 DEFAULT_MIN_THREADS = 4
+
+
+#: the executors a model names, from the cheapest to the most capable
+EXECUTORS = ('events', 'single-threaded', 'multi-threaded')
+
+#: seconds of each spin of an events executor (see :func:`spin`)
+EVENTS_SPIN_PERIOD = 3600.0
+
+
+def executor_kind(nodes: Sequence[Node] = (), named: Optional[str] = None) -> str:
+    """
+    Return the executor a process spins its nodes with: named, or what its nodes need.
+
+    A generated node states its ``executor_name`` (its model's, or the fastest
+    that runs its activities correctly); nodes of one process take the most
+    capable any of them needs. A node that does not say (not generated from
+    a model) is spun as before: by a multi-threaded executor.
+    """
+    if named is not None:
+        if named not in EXECUTORS:
+            raise ValueError(f'unknown executor {named!r}: one of {", ".join(EXECUTORS)}')
+        return named
+    kinds = [getattr(node, 'executor_name', 'multi-threaded') for node in nodes]
+    return max(kinds, key=EXECUTORS.index, default='multi-threaded')
+
+
+def make_executor(kind: str, nodes: Sequence[Node] = ()) -> Executor:
+    """Return an executor of a kind (:data:`EXECUTORS`) for the nodes of a process."""
+    if kind == 'events':
+        from rclpy.experimental import EventsExecutor
+        return EventsExecutor()
+    if kind == 'single-threaded':
+        return SingleThreadedExecutor()
+    return MultiThreadedExecutor(num_threads=executor_threads(nodes))
 
 
 def executor_threads(nodes: Sequence[Node] = ()) -> int:
@@ -64,19 +100,23 @@ def run(node_factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
     """
     Spin the node node_factory() until SIGINT or SIGTERM, then shut down cleanly.
 
+    The node's ``executor_name`` says what spins it (see :func:`executor_kind`).
     Return the exit status of the process (0).
     """
     return run_nodes([node_factory], args)
 
 
 def run_nodes(node_factories: Sequence[Callable[[], Node]],
-              args: Optional[List[str]] = None) -> int:
+              args: Optional[List[str]] = None, executor_name: Optional[str] = None) -> int:
     """
     Spin several nodes in one process until SIGINT or SIGTERM, then shut down cleanly.
 
-    Every node has the threads it would have in a process of its own (see
-    :func:`executor_threads`), so a blocking call of one cannot starve the
-    others. Return the exit status (0).
+    :param executor_name: the executor of the process (:data:`EXECUTORS`); by
+        default the most capable one its nodes need (:func:`executor_kind`). On
+        a multi-threaded one, every node has the threads it would have in a
+        process of its own (see :func:`executor_threads`), so a blocking call
+        of one cannot starve the others.
+    Return the exit status (0).
     """
     signal.signal(signal.SIGINT, _interrupted)
     rclpy.init(args=args)
@@ -85,7 +125,7 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     # first nodes of a 50-node process came up later, not sooner (each node
     # added woke the executor to gather every entity again, under the GIL)
     nodes = [factory() for factory in node_factories]
-    executor = MultiThreadedExecutor(num_threads=executor_threads(nodes))
+    executor = make_executor(executor_kind(nodes, executor_name), nodes)
     for node in nodes:
         executor.add_node(node)
     try:
@@ -108,7 +148,7 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     return 0
 
 
-def spin(executor: MultiThreadedExecutor) -> None:
+def spin(executor: Any) -> None:
     """
     Spin until shutdown, through an entity destroyed while the executor gathered its wait set.
 
@@ -116,7 +156,16 @@ def spin(executor: MultiThreadedExecutor) -> None:
     executor's threads while the spinning thread may be gathering them: rclpy
     then raises InvalidHandle out of spin (ros2/rclpy#1142, #1206), which ended
     the process and every node it held. The next spin leaves the entity out.
+
+    rclpy's EventsExecutor (7.1.6, 9.1.2 of the ros-* wheels) runs nothing in
+    an untimed ``spin()``: it turns on one CPU without calling back. It is
+    spun for a long while at a time, until the context ends.
     """
+    if not isinstance(executor, Executor):  # the EventsExecutor is no Executor
+        never: Future[None] = Future()
+        while executor.context.ok():
+            executor.spin_until_future_complete(never, timeout_sec=EVENTS_SPIN_PERIOD)
+        return
     while True:
         try:
             executor.spin()
@@ -126,7 +175,7 @@ def spin(executor: MultiThreadedExecutor) -> None:
                 raise
 
 
-def stop_executor(executor: MultiThreadedExecutor) -> None:
+def stop_executor(executor: Any) -> None:
     """
     Stop the executor and wait for the callbacks it is running to end.
 
@@ -141,7 +190,7 @@ def stop_executor(executor: MultiThreadedExecutor) -> None:
         pool.shutdown(wait=True)
 
 
-def _settle_callbacks(executor: MultiThreadedExecutor, node: Node) -> None:
+def _settle_callbacks(executor: Any, node: Node) -> None:
     """
     Take the outcome of the callbacks that ended after the executor stopped.
 

@@ -11,16 +11,16 @@ it runs in, or is logged if it runs in an activity, and never stops the node.
 
 from __future__ import annotations
 
-import threading
+from functools import partial
 import traceback
 from typing import (
     Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, TypeVar)
 
 from rclpy.action import CancelResponse, GoalResponse
-from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.lifecycle import LifecycleNode, LifecycleState, TransitionCallbackReturn
 from rclpy.qos import QoSProfile
 from rclpy.timer import Timer
+from robmosys_runtime.activity import Activity, call_each
 from robmosys_runtime.announce import announce_component
 from robmosys_runtime.events import EventClient, EventServer
 from robmosys_runtime.ports import ActionClientPort, ActionServer, QueryClient
@@ -29,17 +29,6 @@ from robmosys_runtime.transitions import refuse_transitions_after_shutdown, TRAN
 
 Function = Callable[..., Any]
 Entity = TypeVar('Entity')
-
-
-class Activity:
-    """An activity: its callback group, and the lock its functions run under."""
-
-    def __init__(self, name: str) -> None:
-        self.name = name
-        self.callback_group = MutuallyExclusiveCallbackGroup()
-        # the group serialises the callbacks of the executor; the lock also
-        # covers calls from other threads (an event condition tested in fire())
-        self.lock = threading.Lock()
 
 
 class ComponentNode(LifecycleNode):
@@ -205,9 +194,11 @@ class ComponentNode(LifecycleNode):
 
     def add_periodic(self, activity: str, period: float, functions: Sequence[Function]) -> Timer:
         """Create the timer of a periodic activity: runs from activate to deactivate."""
-        timer = self.create_timer(
-            period, self.run_activity_callback(activity, functions),
-            callback_group=self.activities[activity].callback_group, autostart=False)
+        run = self.run_activity_callback(activity, functions)
+        # no argument: the EventsExecutor of rclpy 9.1 hands rclpy's TimerInfo to a
+        # callback that takes some, and a periodic function takes none
+        timer = self.create_timer(period, lambda: run(), autostart=False,
+                                  callback_group=self.activities[activity].callback_group)
         self._activity_timers.append(timer)
         return timer
 
@@ -222,7 +213,8 @@ class ComponentNode(LifecycleNode):
         lock; a function that raises is logged and the node goes on.
         """
         lock = self.activities[activity].lock
-        functions = tuple(functions)
+        # one function (the most common) is called with no loop around it, per message
+        call = functions[0] if len(functions) == 1 else partial(call_each, tuple(functions))
 
         def run(*received: Any) -> None:
             if not self._active:
@@ -232,8 +224,7 @@ class ComponentNode(LifecycleNode):
                     # deactivated while it waited: the ports may be gone
                     return
                 try:
-                    for function in functions:
-                        function(*received)
+                    call(*received)
                 except Exception:  # noqa: B902 - an activity failure must not stop the node
                     self._activity_failed(activity)
         return run

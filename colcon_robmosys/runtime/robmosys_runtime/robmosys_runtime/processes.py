@@ -183,6 +183,11 @@ def _check_installed(needs: Dict[str, List[str]]) -> None:
 #: the group of the C++ instances in a shared component container
 CPP_GROUP = 'C++ instances'
 
+#: the executable of rclcpp_components that spins its nodes on each executor
+CONTAINERS = {'events': 'component_container_event',
+              'single-threaded': 'component_container',
+              'multi-threaded': 'component_container_mt'}
+
 
 def container_node(package: str) -> str:
     """Return the node name of the component container of a system's C++ instances."""
@@ -232,9 +237,16 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
             sys.executable, '-m', 'robmosys_runtime.container', description_file,
             params_file, *together])
     if loaded:
-        # rclcpp_components' multi-threaded container; the manager loads the nodes
+        # rclcpp_components' container of the system's executor; the manager loads the nodes
+        executor = description.get('executors', {}).get('cpp', 'multi-threaded')
+        folder = os.path.join(get_package_prefix('rclcpp_components'), 'lib',
+                              'rclcpp_components')
+        container = os.path.join(folder, CONTAINERS[executor])
+        if not os.path.exists(container):
+            # rclcpp_components before component_container_event (Kilted's
+            # 29.x has none): one thread, as the events executor has
+            container = os.path.join(folder, CONTAINERS['single-threaded'])
         groups[CPP_GROUP] = (loaded, [
-            os.path.join(get_package_prefix('rclcpp_components'), 'lib', 'rclcpp_components',
-                         'component_container_mt'),
+            container,
             '--ros-args', '-r', f"__node:={container_node(description['package'])}"])
     return groups

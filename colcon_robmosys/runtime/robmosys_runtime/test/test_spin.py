@@ -7,7 +7,7 @@ import threading
 from conftest import wait_until
 import rclpy
 from rclpy.exceptions import InvalidHandle
-from rclpy.executors import MultiThreadedExecutor
+from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.waitable import NumberOfEntities, Waitable
 from robmosys_runtime.main import spin
 
@@ -125,3 +125,58 @@ def test_a_process_has_the_threads_its_nodes_need(monkeypatch):
     assert executor_threads([object()]) == DEFAULT_MIN_THREADS
     monkeypatch.setattr(os, 'cpu_count', lambda: 16)
     assert executor_threads([SimpleNamespace(min_threads=3)]) == 16
+
+
+def test_a_process_spins_on_the_executor_its_nodes_need():
+    from types import SimpleNamespace
+
+    import pytest
+    from rclpy.executors import MultiThreadedExecutor, SingleThreadedExecutor
+    from robmosys_runtime.main import executor_kind, make_executor
+
+    events, single, multi = (SimpleNamespace(executor_name=name) for name in (
+        'events', 'single-threaded', 'multi-threaded'))
+    assert executor_kind([events]) == 'events'
+    # nodes of one process: the most capable executor one of them needs
+    assert executor_kind([events, single]) == 'single-threaded'
+    assert executor_kind([events, multi, single]) == 'multi-threaded'
+    # a node that does not say (written by hand) keeps the multi-threaded one
+    assert executor_kind([events, object()]) == 'multi-threaded'
+    # the system's choice wins; a name nobody knows is refused
+    assert executor_kind([multi], 'events') == 'events'
+    with pytest.raises(ValueError):
+        executor_kind([events], 'fast')
+    rclpy.init()
+    try:
+        assert isinstance(make_executor('single-threaded'), SingleThreadedExecutor)
+        assert isinstance(make_executor('multi-threaded', [multi]), MultiThreadedExecutor)
+    finally:
+        rclpy.try_shutdown()
+
+
+def test_an_events_executor_runs_timers_and_ends_with_its_context():
+    from rclpy.experimental import EventsExecutor
+
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    executor = EventsExecutor(context=context)
+    node = rclpy.create_node('ticking', context=context)
+    ticks = []
+    node.create_timer(0.01, lambda: ticks.append(1))
+    executor.add_node(node)
+    ended = []
+
+    def spin_until_shutdown() -> None:
+        try:
+            spin(executor)
+        except ExternalShutdownException:
+            ended.append(True)  # what the process's run_nodes takes as the end
+    spinning = threading.Thread(target=spin_until_shutdown, daemon=True)
+    spinning.start()
+    try:
+        assert wait_until(lambda: len(ticks) >= 5, 10)
+    finally:
+        rclpy.try_shutdown(context=context)
+        spinning.join(10)
+    assert not spinning.is_alive() and ended
+    node.destroy_node()

@@ -1,7 +1,7 @@
 // Copyright 2026 The colcon-robmosys authors
 // Licensed under the Apache License, Version 2.0
 
-/// \file The process of a component: one lifecycle node on a multi-threaded executor.
+/// \file The process of a component: one lifecycle node on the executor of its model.
 
 #ifndef ROBMOSYS_RUNTIME__MAIN_HPP_
 #define ROBMOSYS_RUNTIME__MAIN_HPP_
@@ -12,21 +12,51 @@
 #include <thread>
 
 #include "lifecycle_msgs/msg/state.hpp"
+#include "rclcpp/experimental/executors/events_executor/events_executor.hpp"
 #include "rclcpp/rclcpp.hpp"
 
 namespace robmosys_runtime
 {
 
-/// Spin a NodeT (a LifecycleNode) on a multi-threaded executor until SIGINT or SIGTERM.
+/// The executors a model names (docs/model-format.md, "Executors").
+enum class Executor
+{
+  /// rclcpp::experimental::executors::EventsExecutor: one thread, no wait set per callback
+  EVENTS,
+  /// rclcpp::executors::SingleThreadedExecutor
+  SINGLE_THREADED,
+  /// rclcpp::executors::MultiThreadedExecutor, a thread per callback group and one more
+  MULTI_THREADED,
+};
+
+/// Return an executor of a kind; a multi-threaded one has at least min_threads threads.
+inline std::shared_ptr<rclcpp::Executor> make_executor(Executor kind, size_t min_threads)
+{
+  switch (kind) {
+    case Executor::EVENTS:
+      return std::make_shared<rclcpp::experimental::executors::EventsExecutor>();
+    case Executor::SINGLE_THREADED:
+      return std::make_shared<rclcpp::executors::SingleThreadedExecutor>();
+    default:
+      return std::make_shared<rclcpp::executors::MultiThreadedExecutor>(
+        rclcpp::ExecutorOptions(),
+        std::max<size_t>(std::thread::hardware_concurrency(), min_threads));
+  }
+}
+
+/// Spin a NodeT (a LifecycleNode) on an executor until SIGINT or SIGTERM.
 /**
  * Before the context shuts down, the node takes its shutdown transition (its
  * on_shutdown functions run, ports are released) while it can still tell the
- * lifecycle clients. The executor has at least min_threads threads, so that a
- * blocking call in one activity never starves the thread that delivers its answer.
+ * lifecycle clients. A multi-threaded executor has at least min_threads threads,
+ * so that a blocking call in one activity never starves the thread that delivers
+ * its answer.
  * \return the exit status of the process
  */
 template<typename NodeT>
-int run(int argc, char * argv[], size_t min_threads, const char * logger_name)
+int run(
+  int argc, char * argv[], size_t min_threads, const char * logger_name,
+  Executor kind = Executor::MULTI_THREADED)
 {
   // rclcpp::init installs the SIGINT and SIGTERM handlers that end spin()
   rclcpp::init(argc, argv);
@@ -42,12 +72,10 @@ int run(int argc, char * argv[], size_t min_threads, const char * logger_name)
           alive->shutdown();
         }
       });
-    const size_t threads =
-      std::max<size_t>(std::thread::hardware_concurrency(), min_threads);
-    rclcpp::executors::MultiThreadedExecutor executor(rclcpp::ExecutorOptions(), threads);
-    executor.add_node(node->get_node_base_interface());
-    executor.spin();
-    executor.remove_node(node->get_node_base_interface());
+    auto executor = make_executor(kind, min_threads);
+    executor->add_node(node->get_node_base_interface());
+    executor->spin();
+    executor->remove_node(node->get_node_base_interface());
   } catch (const std::exception & error) {
     RCLCPP_FATAL(rclcpp::get_logger(logger_name), "%s", error.what());
     status = 1;

@@ -444,7 +444,8 @@ bool Everything::fAbove(
 int run_Everything(int argc, char * argv[])
 {
   return robmosys_runtime::run<Everything_impl>(
-    argc, argv, 15, "Everything");
+    argc, argv, 15, "Everything",
+    robmosys_runtime::Executor::MULTI_THREADED);
 }
 
 }  // namespace all_ports

@@ -175,8 +175,8 @@ private:
   Parameters params_;
 };
 
-/// Spin Everything_impl on a multi-threaded executor (at least 15 threads) until
-/// SIGINT or SIGTERM: the process of the component (its executable Everything).
+/// Spin Everything_impl on the multi-threaded executor until SIGINT or SIGTERM: the
+/// process of the component (its executable Everything).
 int run_Everything(int argc, char * argv[]);
 
 }  // namespace all_ports

@@ -10,7 +10,7 @@ int run_Everything(int argc, char * argv[]);
 
 }  // namespace all_ports
 
-/// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
+/// Spin the node on the multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
   return all_ports::run_Everything(argc, argv);

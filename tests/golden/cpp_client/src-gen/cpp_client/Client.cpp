@@ -78,7 +78,8 @@ void Client::fAnswer(const example_msgs::srv::AddTwoInts::Response & commobj)
 int run_Client(int argc, char * argv[])
 {
   return robmosys_runtime::run<Client_impl>(
-    argc, argv, 4, "Client");
+    argc, argv, 4, "Client",
+    robmosys_runtime::Executor::MULTI_THREADED);
 }
 
 }  // namespace cpp_client

@@ -66,8 +66,8 @@ private:
   Parameters params_;
 };
 
-/// Spin Client_impl on a multi-threaded executor (at least 4 threads) until
-/// SIGINT or SIGTERM: the process of the component (its executable Client).
+/// Spin Client_impl on the multi-threaded executor until SIGINT or SIGTERM: the
+/// process of the component (its executable Client).
 int run_Client(int argc, char * argv[]);
 
 }  // namespace cpp_client

@@ -10,7 +10,7 @@ int run_Client(int argc, char * argv[]);
 
 }  // namespace cpp_client
 
-/// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
+/// Spin the node on the multi-threaded executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
   return cpp_client::run_Client(argc, argv);

@@ -114,7 +114,8 @@ void DummyJointStates::create_ports()
 int run_DummyJointStates(int argc, char * argv[])
 {
   return robmosys_runtime::run<DummyJointStates_impl>(
-    argc, argv, 2, "DummyJointStates");
+    argc, argv, 2, "DummyJointStates",
+    robmosys_runtime::Executor::EVENTS);
 }
 
 }  // namespace cpp_dummy_joint_states

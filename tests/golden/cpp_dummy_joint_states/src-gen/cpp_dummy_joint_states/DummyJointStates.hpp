@@ -69,8 +69,8 @@ private:
   Parameters params_;
 };
 
-/// Spin DummyJointStates_impl on a multi-threaded executor (at least 2 threads) until
-/// SIGINT or SIGTERM: the process of the component (its executable DummyJointStates).
+/// Spin DummyJointStates_impl on the events executor until SIGINT or SIGTERM: the
+/// process of the component (its executable DummyJointStates).
 int run_DummyJointStates(int argc, char * argv[]);
 
 }  // namespace cpp_dummy_joint_states

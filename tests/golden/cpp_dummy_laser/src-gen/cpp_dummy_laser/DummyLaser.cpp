@@ -130,7 +130,8 @@ void DummyLaser::create_ports()
 int run_DummyLaser(int argc, char * argv[])
 {
   return robmosys_runtime::run<DummyLaser_impl>(
-    argc, argv, 2, "DummyLaser");
+    argc, argv, 2, "DummyLaser",
+    robmosys_runtime::Executor::EVENTS);
 }
 
 }  // namespace cpp_dummy_laser

@@ -71,8 +71,8 @@ private:
   Parameters params_;
 };
 
-/// Spin DummyLaser_impl on a multi-threaded executor (at least 2 threads) until
-/// SIGINT or SIGTERM: the process of the component (its executable DummyLaser).
+/// Spin DummyLaser_impl on the events executor until SIGINT or SIGTERM: the
+/// process of the component (its executable DummyLaser).
 int run_DummyLaser(int argc, char * argv[]);
 
 }  // namespace cpp_dummy_laser

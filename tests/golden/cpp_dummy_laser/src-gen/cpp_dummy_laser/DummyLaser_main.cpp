@@ -10,7 +10,7 @@ int run_DummyLaser(int argc, char * argv[]);
 
 }  // namespace cpp_dummy_laser
 
-/// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
+/// Spin the node on the events executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
   return cpp_dummy_laser::run_DummyLaser(argc, argv);

@@ -147,7 +147,8 @@ void DummyMapServer::create_ports()
 int run_DummyMapServer(int argc, char * argv[])
 {
   return robmosys_runtime::run<DummyMapServer_impl>(
-    argc, argv, 2, "DummyMapServer");
+    argc, argv, 2, "DummyMapServer",
+    robmosys_runtime::Executor::EVENTS);
 }
 
 }  // namespace cpp_dummy_map_server

@@ -74,8 +74,8 @@ private:
   Parameters params_;
 };
 
-/// Spin DummyMapServer_impl on a multi-threaded executor (at least 2 threads) until
-/// SIGINT or SIGTERM: the process of the component (its executable DummyMapServer).
+/// Spin DummyMapServer_impl on the events executor until SIGINT or SIGTERM: the
+/// process of the component (its executable DummyMapServer).
 int run_DummyMapServer(int argc, char * argv[]);
 
 }  // namespace cpp_dummy_map_server

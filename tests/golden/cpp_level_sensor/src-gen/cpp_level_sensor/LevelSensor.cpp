@@ -92,7 +92,8 @@ bool LevelSensor::fAbove(
 int run_LevelSensor(int argc, char * argv[])
 {
   return robmosys_runtime::run<LevelSensor_impl>(
-    argc, argv, 3, "LevelSensor");
+    argc, argv, 3, "LevelSensor",
+    robmosys_runtime::Executor::EVENTS);
 }
 
 }  // namespace cpp_level_sensor

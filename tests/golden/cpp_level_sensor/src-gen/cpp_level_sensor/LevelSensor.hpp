@@ -66,8 +66,8 @@ private:
   Parameters params_;
 };
 
-/// Spin LevelSensor_impl on a multi-threaded executor (at least 3 threads) until
-/// SIGINT or SIGTERM: the process of the component (its executable LevelSensor).
+/// Spin LevelSensor_impl on the events executor until SIGINT or SIGTERM: the
+/// process of the component (its executable LevelSensor).
 int run_LevelSensor(int argc, char * argv[]);
 
 }  // namespace cpp_level_sensor

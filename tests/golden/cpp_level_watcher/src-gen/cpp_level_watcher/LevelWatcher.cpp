@@ -110,7 +110,8 @@ void LevelWatcher::fOnEvent(const example_msgs::action::LevelAbove::Feedback & c
 int run_LevelWatcher(int argc, char * argv[])
 {
   return robmosys_runtime::run<LevelWatcher_impl>(
-    argc, argv, 4, "LevelWatcher");
+    argc, argv, 4, "LevelWatcher",
+    robmosys_runtime::Executor::EVENTS);
 }
 
 }  // namespace cpp_level_watcher

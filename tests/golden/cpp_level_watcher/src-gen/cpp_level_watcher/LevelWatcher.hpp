@@ -70,8 +70,8 @@ private:
   Parameters params_;
 };
 
-/// Spin LevelWatcher_impl on a multi-threaded executor (at least 4 threads) until
-/// SIGINT or SIGTERM: the process of the component (its executable LevelWatcher).
+/// Spin LevelWatcher_impl on the events executor until SIGINT or SIGTERM: the
+/// process of the component (its executable LevelWatcher).
 int run_LevelWatcher(int argc, char * argv[]);
 
 }  // namespace cpp_level_watcher

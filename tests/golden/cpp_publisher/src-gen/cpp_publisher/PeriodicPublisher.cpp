@@ -112,7 +112,8 @@ void PeriodicPublisher::fPublishing()
 int run_PeriodicPublisher(int argc, char * argv[])
 {
   return robmosys_runtime::run<PeriodicPublisher>(
-    argc, argv, 2, "PeriodicPublisher");
+    argc, argv, 2, "PeriodicPublisher",
+    robmosys_runtime::Executor::EVENTS);
 }
 
 }  // namespace cpp_publisher

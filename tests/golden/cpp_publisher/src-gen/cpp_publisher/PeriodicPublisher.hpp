@@ -65,8 +65,8 @@ private:
   Parameters params_;
 };
 
-/// Spin PeriodicPublisher on a multi-threaded executor (at least 2 threads) until
-/// SIGINT or SIGTERM: the process of the component (its executable PeriodicPublisher).
+/// Spin PeriodicPublisher on the events executor until SIGINT or SIGTERM: the
+/// process of the component (its executable PeriodicPublisher).
 int run_PeriodicPublisher(int argc, char * argv[]);
 
 }  // namespace cpp_publisher

@@ -82,7 +82,8 @@ void Receiver::create_ports()
 int run_Receiver(int argc, char * argv[])
 {
   return robmosys_runtime::run<Receiver_impl>(
-    argc, argv, 2, "Receiver");
+    argc, argv, 2, "Receiver",
+    robmosys_runtime::Executor::EVENTS);
 }
 
 }  // namespace cpp_receiver

@@ -59,8 +59,8 @@ private:
   Parameters params_;
 };
 
-/// Spin Receiver_impl on a multi-threaded executor (at least 2 threads) until
-/// SIGINT or SIGTERM: the process of the component (its executable Receiver).
+/// Spin Receiver_impl on the events executor until SIGINT or SIGTERM: the
+/// process of the component (its executable Receiver).
 int run_Receiver(int argc, char * argv[]);
 
 }  // namespace cpp_receiver

@@ -10,7 +10,7 @@ int run_Receiver(int argc, char * argv[]);
 
 }  // namespace cpp_receiver
 
-/// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
+/// Spin the node on the events executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
   return cpp_receiver::run_Receiver(argc, argv);

@@ -208,7 +208,8 @@ std::string Sender::vMaxCells(const int64_t & value)
 int run_Sender(int argc, char * argv[])
 {
   return robmosys_runtime::run<Sender>(
-    argc, argv, 2, "Sender");
+    argc, argv, 2, "Sender",
+    robmosys_runtime::Executor::EVENTS);
 }
 
 }  // namespace cpp_sender

@@ -96,8 +96,8 @@ private:
   robmosys_runtime::ParameterRules rules_;
 };
 
-/// Spin Sender on a multi-threaded executor (at least 2 threads) until
-/// SIGINT or SIGTERM: the process of the component (its executable Sender).
+/// Spin Sender on the events executor until SIGINT or SIGTERM: the
+/// process of the component (its executable Sender).
 int run_Sender(int argc, char * argv[]);
 
 }  // namespace cpp_sender

@@ -10,7 +10,7 @@ int run_Sender(int argc, char * argv[]);
 
 }  // namespace cpp_sender
 
-/// Spin the node on a multi-threaded executor until SIGINT or SIGTERM.
+/// Spin the node on the events executor until SIGINT or SIGTERM.
 int main(int argc, char * argv[])
 {
   return cpp_sender::run_Sender(argc, argv);

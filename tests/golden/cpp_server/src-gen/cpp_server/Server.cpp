@@ -63,7 +63,8 @@ void Server::create_ports()
 int run_Server(int argc, char * argv[])
 {
   return robmosys_runtime::run<Server_impl>(
-    argc, argv, 2, "Server");
+    argc, argv, 2, "Server",
+    robmosys_runtime::Executor::EVENTS);
 }
 
 }  // namespace cpp_server

@@ -61,8 +61,8 @@ private:
   Parameters params_;
 };
 
-/// Spin Server_impl on a multi-threaded executor (at least 2 threads) until
-/// SIGINT or SIGTERM: the process of the component (its executable Server).
+/// Spin Server_impl on the events executor until SIGINT or SIGTERM: the
+/// process of the component (its executable Server).
 int run_Server(int argc, char * argv[]);
 
 }  // namespace cpp_server

@@ -82,7 +82,8 @@ void Subscriber::create_ports()
 int run_Subscriber(int argc, char * argv[])
 {
   return robmosys_runtime::run<Subscriber_impl>(
-    argc, argv, 2, "Subscriber");
+    argc, argv, 2, "Subscriber",
+    robmosys_runtime::Executor::EVENTS);
 }
 
 }  // namespace cpp_subscriber

@@ -59,8 +59,8 @@ private:
   Parameters params_;
 };
 
-/// Spin Subscriber_impl on a multi-threaded executor (at least 2 threads) until
-/// SIGINT or SIGTERM: the process of the component (its executable Subscriber).
+/// Spin Subscriber_impl on the events executor until SIGINT or SIGTERM: the
+/// process of the component (its executable Subscriber).
 int run_Subscriber(int argc, char * argv[]);
 
 }  // namespace cpp_subscriber
