@@ -465,3 +465,13 @@ def test_the_description_holds_the_values_and_periods_of_the_model():
     # a laser scans every 0.1 s: its scans are watched for silence
     assert (scan['name'], scan['period'], scan['required']) == ('/dummy_robot/scan', 0.1, False)
     assert all(p['period'] is None for p in instances['monitor']['ports'])
+
+
+def test_bringup_json_declares_a_mapped_parameter_per_entry(generated):
+    """The offline check of parameter files sees elbow.amplitude, not amplitude."""
+    description = json.loads((generated / 'dummy_robot_bringup' / 'bringup.json').read_text())
+    [joints] = [i for i in description['instances'] if i['instance'] == 'joints']
+    declared = {d['name']: d for d in joints['declared']}
+    assert 'amplitude' not in declared
+    assert declared['shoulder.amplitude']['range'] == [0.0, 3.0, 0.0]
+    assert declared['elbow.amplitude']['type'] == 'double'

@@ -321,7 +321,8 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
         processes=system.processes,
         watched=watched_instances(system, components, topics),
         model_files=tuple(sorted(_installed_models(workspace).items())),
-        declared=tuple((i.name, declared_parameters(i, components[i.name], topics))
+        declared=tuple((i.name, declared_parameters(i, components[i.name], topics,
+                                                    dict(system.parameters)))
                        for i in system.instances),
         executors=shared_executors(system.executor, components.values()),
         depends=packages, exec_depends=exec_depends,
