@@ -283,6 +283,43 @@ def test_cpp_component_runs_in_a_container(test_workspace_built, domain_id):
             process.output()
 
 
+@requires_rclcpp
+def test_cpp_mapped_parameters_are_declared_checked_and_read_per_entry(
+        test_workspace_built, domain_id):
+    """dummy_robot_cpp_bringup's joints: an amplitude per joint, its range, typed access."""
+    from sensor_msgs.msg import JointState
+    share = test_workspace_built.share('dummy_robot_cpp_bringup')
+    node = {n.name: n for n in read_launch_file(nodes_launch_file(share), share)}['joints']
+    env = test_workspace_built.env(domain_id)
+    with ros_env.background(node.command(test_workspace_built.install), env=env) as process, \
+            LifecycleDriver(domain_id) as driver:
+        names = ['shoulder.amplitude', 'elbow.amplitude']
+        assert driver.parameters(node.fqn, names) == {
+            'shoulder.amplitude': 1.0, 'elbow.amplitude': 0.5}, process.output()
+        # the descriptor's range holds for each entry
+        assert not driver.set_parameters(node.fqn, {'elbow.amplitude': 5.0})['elbow.amplitude'][0]
+        assert driver.parameters(node.fqn, ['joint1.amplitude']) == {}
+        # fInit reads joint_names_map(): each joint swings with its own amplitude
+        states: list[JointState] = []
+        driver.node.create_subscription(JointState, f'{node.fqn.rsplit("/", 1)[0]}/joint_states',
+                                        states.append, 10)
+        _bring_up(driver, [node.fqn])
+
+        def swinging() -> bool:
+            driver.spin(0.1)
+            return any(abs(s.position[0]) > 0.01 for s in states)
+
+        assert wait_until(swinging, 20), process.output()
+        moving = next(s for s in states if abs(s.position[0]) > 0.01)
+        assert list(moving.name) == ['shoulder', 'elbow']
+        assert moving.position[1] == pytest.approx(moving.position[0] * 0.5)
+    bad = ros_env.run([*node.command(test_workspace_built.install), '-p',
+                       'joint_names:=[shoulder, shoulder]'], env=env, timeout=60)
+    assert bad.returncode != 0
+    assert "parameter 'joint_names': entry 'shoulder' is listed twice" in \
+        bad.stdout + bad.stderr, bad.stdout + bad.stderr
+
+
 #: what a quiet shutdown never prints
 NOISE = re.compile(r'Traceback|terminate called|\[ERROR\]|exception|Segmentation')
 

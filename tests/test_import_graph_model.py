@@ -36,6 +36,8 @@ COMPONENT = textwrap.dedent("""
         parameters:
           rate: {type: int, default: 10}
           label: {type: string, default: plain}
+          joints: {type: 'string[]', default: [a], read_only: true}
+          gain: {type: double, default: 1.0, for_each: joints}
 """)
 
 
@@ -52,7 +54,7 @@ def test_a_snapshot_becomes_instances_components_and_connections(tmp_path: Path)
     nodes = [
         # generated, twice under one name: told apart, the values it changed kept
         _generated('pub', '/a', ['pText=/a/pub/pText', 'qAsk=/srv/ask'], rate=10,
-                   label='a: "b" # c'),
+                   label='a: "b" # c', joints=['a', 'b'], **{'a.gain': 1.0, 'b.gain': 2.0}),
         _generated('pub', '/b', ['pText=/b/pub/pText', 'qAsk=/b/qAsk'], rate=20,
                    label='plain'),
         # nobody's: a server on the name a generated client uses, process unknown
@@ -75,7 +77,8 @@ def test_a_snapshot_becomes_instances_components_and_connections(tmp_path: Path)
     instances = model['systems'][0]['instances']
     assert instances == {
         'a_pub': {'component': 'pub_pkg', 'namespace': '/a',
-                  'parameters': {'label': 'a: "b" # c'}},
+                  # a mapped parameter: for each entry the node runs with
+                  'parameters': {'label': 'a: "b" # c', 'joints': ['a', 'b'], 'b.gain': 2.0}},
         'b_pub': {'component': 'pub_pkg', 'namespace': '/b', 'parameters': {'rate': 20}},
         'listener': {'component': 'listeners/listener'},
         'srv': {'component': 'srv/srv'},

@@ -1,6 +1,8 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
-"""Parameters on real ROS 2: rules, validators, change callbacks, groups, system-wide values.
+"""Parameters on real ROS 2: rules, validators, change callbacks, groups, mapped parameters.
+
+System-wide values too; a mapped parameter is repeated for each entry of a string array.
 
 A Python component with every kind of rule runs twice, as two instances of a
 system (started as its launch files start them); a probe node sets and reads
@@ -44,6 +46,10 @@ components:
         code: |
           self.get_logger().info(f'kp is now {self.params.controller.pid.kp}')
           raise RuntimeError('a failing on_change is logged')
+      fJointGain:
+        code: |
+          gains = sorted((j, e.gain) for j, e in self.params.joints_map.items())
+          self.get_logger().info(f'joint gains {gains}')
     parameters:
       mode: {type: string, default: slow, one_of: [slow, fast], description: 'Speed | pace.'}
       label: {type: string, default: abc, size: {min: 1, max: 8}, validate: vLabel}
@@ -52,11 +58,16 @@ components:
       controller.gain: {type: double, default: 0.5, range: {from: 0.0, to: 1.0},
                         on_change: fGainChanged}
       controller.pid.kp: {type: int, default: 3, one_of: [1, 2, 3], on_change: [fKpChanged]}
+      joints: {type: 'string[]', default: [a], read_only: true}
+      gain: {type: double, default: 1.0, range: {from: 0.0, to: 5.0}, for_each: joints,
+             on_change: fJointGain}
+      limits.mode: {type: string, default: soft, one_of: [soft, hard], for_each: joints}
 systems:
   - package: tuner_system
     parameters: {use_sim_time: true, mode: fast}
     instances:
-      first: {component: tuner, parameters: {mode: slow, controller.gain: 0.7}}
+      first: {component: tuner, parameters: {mode: slow, controller.gain: 0.7, joints: [a, b],
+                                             b.gain: 2.5}}
       second: {component: tuner}
 """
 
@@ -153,6 +164,28 @@ def test_on_change_runs_after_an_accepted_change_and_sees_the_new_value(running)
         'controller.gain': 0.25, 'controller.pid.kp': 1}
 
 
+def test_mapped_parameters_are_declared_per_entry_and_keep_their_rules(running):
+    nodes, processes, driver = running
+    first, second = nodes['first'].fqn, nodes['second'].fqn
+    names = ['a.gain', 'b.gain', 'limits.a.mode', 'limits.b.mode']
+    assert driver.parameters(first, names) == {
+        'a.gain': 1.0, 'b.gain': 2.5, 'limits.a.mode': 'soft', 'limits.b.mode': 'soft'}
+    # the second keeps the default entries, [a]: nothing is declared for b (rclpy
+    # answers no value at all for a name it does not have)
+    assert driver.parameters(second, names[::2]) == {'a.gain': 1.0, 'limits.a.mode': 'soft'}
+    assert driver.parameters(second, ['b.gain']) == {}
+    # the range of the descriptor and the rules hold for each entry
+    assert not driver.set_parameters(first, {'b.gain': 7.0})['b.gain'][0]
+    assert driver.set_parameters(first, {'limits.b.mode': 'firm'})['limits.b.mode'] == (
+        False, "parameter 'limits.b.mode': 'firm' is not one of 'soft', 'hard'")
+    assert driver.set_parameters(first, {'a.gain': 0.5}) == {'a.gain': (True, '')}
+    # on_change runs, and the typed access reads each entry's values
+    process = processes['first']
+    assert wait_until(lambda: "joint gains [('a', 0.5), ('b', 2.5)]" in process.output(),
+                      10), process.output()
+    assert driver.parameters(first, ['a.gain', 'b.gain']) == {'a.gain': 0.5, 'b.gain': 2.5}
+
+
 def test_the_node_still_configures_with_valid_values(running):
     nodes, processes, driver = running
     assert driver.transition(nodes['second'].fqn, 'configure'), processes['second'].output()
@@ -165,6 +198,15 @@ def test_a_start_value_that_breaks_a_rule_stops_the_node(built):
     assert result.returncode != 0
     output = result.stdout + result.stderr
     assert "parameter 'mode': 'medium' is not one of 'slow', 'fast'" in output, output
+
+
+def test_entries_of_a_mapped_array_that_break_its_rules_stop_the_node(built):
+    node = _launched(built)['second']
+    result = run([*node.command(built.install), '-p', 'joints:=[a, b, a]'],
+                 env=built.env(free_domain_id()), timeout=60)
+    assert result.returncode != 0
+    output = result.stdout + result.stderr
+    assert "parameter 'joints': entry 'a' is listed twice" in output, output
 
 
 def test_a_validator_refuses_the_value_of_the_moment_on_configure(built):
@@ -187,3 +229,5 @@ def test_the_parameter_page_is_installed(built):
     # model text is escaped: the pipe of the description does not end its cell
     assert "| one of 'slow', 'fast' |  | Speed \\| pace. |" in page
     assert "| 'abc' | no | 1 to 8 characters; validated by vLabel\\(\\) |" in page
+    assert '| `<joints>.gain` | double | 1.0 | no | one per entry of joints; in \\[0.0, 5.0\\] ' \
+        '| fJointGain |  |' in page

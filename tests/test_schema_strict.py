@@ -38,6 +38,7 @@ _VALUES = 'compares two values of the model (JSON Schema has no $data)'
 _FIELD_VALUE = ('a field value against the type written in another key: fixed sizes '
                 'and string bounds written in the type text cannot be compared')
 _CODE = 'reads the embedded code or the signatures of functions'
+_MAPPED = 'compares a parameter with the array parameter its for_each names'
 
 #: corpus cases whose rule no schema can express, and why
 CHECK_ONLY = {
@@ -65,6 +66,13 @@ CHECK_ONLY = {
     'parameter_default_element_not_listed_block': _VALUES,
     'parameter_default_element_not_listed_flow': _VALUES,
     'parameter_default_outside_range': _VALUES,
+    'parameter_for_each_array_is_mapped': _MAPPED,
+    'parameter_for_each_array_not_read_only': _MAPPED,
+    'parameter_for_each_entry_clashes': _MAPPED,
+    'parameter_for_each_entry_not_a_name': _MAPPED,
+    'parameter_for_each_not_a_string_array': _MAPPED,
+    'parameter_for_each_typed_access_clash': _MAPPED,
+    'parameter_for_each_unknown_array': _MAPPED,
     'parameter_group_and_parameter': 'compares two keys of one mapping (a name, a group)',
     'parameter_one_of_default_not_listed': _VALUES,
     'parameter_size_default_too_long': _VALUES,
@@ -95,6 +103,7 @@ CHECK_ONLY = {
     'system_instance_named_after_a_host': _VALUES,
     'system_instance_not_a_component': _CROSS,
     'system_instance_of_itself': _CROSS,
+    'system_mapped_parameter_values': _CROSS,
     'system_one_name_two_types': _CROSS,
     'system_outside_name_of_another_type': _CROSS,
     'system_override_array_element_block': _CROSS,

@@ -25,6 +25,7 @@ from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
 from colcon_robmosys.mapping.system import plan_system
+from colcon_robmosys.model.parameters import node_parameters
 from colcon_robmosys.model.types import (
     Component, Instance, Pattern, PortRef, Role, System, Workspace)
 from conftest import colcon, requires_ros, TEST_WORKSPACE
@@ -211,7 +212,10 @@ def test_params_file_holds_the_overrides_by_node_name(generated, package):
     expected = {}
     for instance in system.instances:
         if instance.parameters:
-            types = {p.name: p.type for p in _component(system, instance.name).parameters}
+            # by ROS 2 name: a mapped parameter once per entry of its array
+            types = {n: p.type for n, p in node_parameters(
+                _component(system, instance.name).parameters,
+                dict(instance.parameters)).items()}
             values = {n: float(v) if types[n] == 'double' else
                       list(v) if isinstance(v, (list, tuple)) else v
                       for n, v in instance.parameters}
@@ -461,3 +465,13 @@ def test_the_description_holds_the_values_and_periods_of_the_model():
     # a laser scans every 0.1 s: its scans are watched for silence
     assert (scan['name'], scan['period'], scan['required']) == ('/dummy_robot/scan', 0.1, False)
     assert all(p['period'] is None for p in instances['monitor']['ports'])
+
+
+def test_bringup_json_declares_a_mapped_parameter_per_entry(generated):
+    """The offline check of parameter files sees elbow.amplitude, not amplitude."""
+    description = json.loads((generated / 'dummy_robot_bringup' / 'bringup.json').read_text())
+    [joints] = [i for i in description['instances'] if i['instance'] == 'joints']
+    declared = {d['name']: d for d in joints['declared']}
+    assert 'amplitude' not in declared
+    assert declared['shoulder.amplitude']['range'] == [0.0, 3.0, 0.0]
+    assert declared['elbow.amplitude']['type'] == 'double'

@@ -11,24 +11,39 @@ user's code and run in the node only (on every change, and on configure).
 from __future__ import annotations
 
 from functools import partial
-from typing import Any, Callable, Iterable
+from typing import Any, Callable, Iterable, Mapping, Sequence
 
 from colcon_robmosys.errors import Diagnostic, Location
 from colcon_robmosys.mapping.parameters import NODE_PARAMETERS
 from colcon_robmosys.model.build_base import entry_at_fault
-from colcon_robmosys.model.parameters import parameter_value_problem, rule_problem
+from colcon_robmosys.model.parameters import (
+    entries_problem, node_parameters, parameter_value_problem, rule_problem)
 from colcon_robmosys.model.types import Component, Instance, Parameter, System
 
 
-def _value_problem(parameter: Parameter, value: Any) -> str | None:
+def _value_problem(parameter: Parameter, value: Any,
+                   parameters: Sequence[Parameter] = ()) -> str | None:
+    """Return why a value does not fit; of an array with mapped parameters, its entries too."""
     return parameter_value_problem(parameter.type, value) or \
-        rule_problem(parameter, value)
+        rule_problem(parameter, value) or \
+        entries_problem(parameters, parameter.name, value)
 
 
-def override_problems(instance: Instance, component: Component) -> list[Diagnostic]:
-    """Return what is wrong with the values a system gives an instance."""
+def _declared(component: Component, instance: Instance,
+              shared: Mapping[str, Any]) -> dict[str, Parameter]:
+    """Return the parameters of an instance's node by name, with the values a system sets."""
+    return node_parameters(component.parameters, {**shared, **dict(instance.parameters)})
+
+
+def override_problems(instance: Instance, component: Component,
+                      shared: Mapping[str, Any] | None = None) -> list[Diagnostic]:
+    """Return what is wrong with the values a system gives an instance.
+
+    :param shared: the values the system sets for every instance (the arrays
+      of mapped parameters among them)
+    """
     problems = []
-    parameters = {p.name: p for p in component.parameters}
+    parameters = _declared(component, instance, shared or {})
     locations = instance.parameter_locations or \
         (instance.location,) * len(instance.parameters)
     entries = instance.parameter_entry_locations or ((),) * len(instance.parameters)
@@ -48,10 +63,11 @@ def override_problems(instance: Instance, component: Component) -> list[Diagnost
                 location, f"instance '{instance.name}': component '{component.name}' has "
                 f"no parameter '{name}' (its parameters: {known})"))
             continue
-        problem = _value_problem(parameter, value)
+        problem_of = partial(_value_problem, parameter, parameters=component.parameters)
+        problem = problem_of(value)
         if problem:
             problems.append(Diagnostic(
-                _at_entry(location, at, value, problem, partial(_value_problem, parameter)),
+                _at_entry(location, at, value, problem, problem_of),
                 f"instance '{instance.name}', parameter '{name}': {problem}"))
     return problems
 
@@ -73,6 +89,7 @@ def everywhere_problems(system: System, components: Iterable[tuple[Instance, Com
     """
     problems = []
     pairs = list(components)
+    shared = dict(system.parameters)
     locations = system.parameter_locations or (system.location,) * len(system.parameters)
     entries = system.parameter_entry_locations or ((),) * len(system.parameters)
     for (name, value), location, at in zip(system.parameters, locations, entries):
@@ -81,11 +98,11 @@ def everywhere_problems(system: System, components: Iterable[tuple[Instance, Com
             parameter_value_problem, NODE_PARAMETERS.get(name, ''))
         problem, whose = check(value) if types else None, ''
         for instance, component in pairs:
-            parameter = next((p for p in component.parameters if p.name == name), None)
+            parameter = _declared(component, instance, shared).get(name)
             if parameter is None or problem:
                 continue
             types.setdefault(parameter.type, f"instance '{instance.name}'")
-            check = partial(_value_problem, parameter)
+            check = partial(_value_problem, parameter, parameters=component.parameters)
             problem, whose = check(value), f" (for instance '{instance.name}')"
         if problem:
             problems.append(_everywhere(_at_entry(location, at, value, problem, check),

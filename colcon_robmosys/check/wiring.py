@@ -66,7 +66,7 @@ def _check_system(ctx: CheckContext, system: System) -> None:
                       f"instance '{instance.name}' has the node name "
                       f"'{fqn}' of instance '{node_names[fqn]}'")
         node_names[fqn] = instance.name
-        ctx.diagnostics += override_problems(instance, component)
+        ctx.diagnostics += override_problems(instance, component, dict(system.parameters))
         check_qos_overrides(ctx, instance, component)
         for after in instance.after:
             other = system.instance(after)

@@ -31,7 +31,7 @@ from colcon_robmosys.importer.graph_yaml import Commented, dump
 from colcon_robmosys.importer.processes import NodeProcess, process_of
 from colcon_robmosys.model.components import Component
 from colcon_robmosys.model.names import identifier_problem
-from colcon_robmosys.model.parameters import freeze_parameter_value
+from colcon_robmosys.model.parameters import freeze_parameter_value, node_parameters
 
 #: what a robmosys_runtime node announces (robmosys_runtime/announce.py)
 COMPONENT, PORTS, SYSTEM = 'robmosys.component', 'robmosys.ports', 'robmosys.system'
@@ -170,12 +170,15 @@ def _set_parameters(entry: dict[str, Any], node: GraphNode, component: Component
     system built from the import runs them with the values they run with.
     """
     values = {}
-    for parameter in component.parameters:
-        value = node.parameter(parameter.name)
+    # a mapped parameter for each entry of its array, as the node runs it
+    running = {p.for_each: node.parameter(p.for_each) for p in component.parameters
+               if p.for_each}
+    for name, parameter in node_parameters(component.parameters, running).items():
+        value = node.parameter(name)
         # the graph gives lists, the model keeps tuples: an array at its default is no value
         if value is not None and \
                 freeze_parameter_value(parameter.type, value) != parameter.default:
-            values[parameter.name] = value
+            values[name] = value
     if values:
         entry['parameters'] = values
 

@@ -11,7 +11,7 @@ from typing import Any
 from colcon_robmosys.mapping.names import connection_name
 from colcon_robmosys.mapping.parameters import NODE_PARAMETERS
 from colcon_robmosys.mapping.portkinds import port_kind
-from colcon_robmosys.model.parameters import freeze_parameter_value
+from colcon_robmosys.model.parameters import freeze_parameter_value, node_parameters
 from colcon_robmosys.model.types import Component, Role, System
 
 
@@ -71,15 +71,18 @@ def watched_instances(system: System, components: dict[str, Component],
                 else None,
                 port.name in instance.unconnected, port.name in instance.quiet))
         values: dict[str, tuple[Any, str]] = {}
-        for parameter in component.parameters:
+        # by ROS 2 name: a mapped parameter once per entry of its array
+        declared = node_parameters(component.parameters, {
+            **dict(system.parameters), **dict(instance.parameters)})
+        for name, parameter in declared.items():
             if parameter.default is not None:
-                values[parameter.name] = (parameter.default, str(instance.location))
+                values[name] = (parameter.default, str(instance.location))
         for (name, value), at in zip(system.parameters, system.parameter_locations):
             if name in values or name == 'use_sim_time':
                 values[name] = (value, str(at))
         for (name, value), at in zip(instance.parameters, instance.parameter_locations):
             values[name] = (value, str(at))
-        types = {p.name: p.type for p in component.parameters}
+        types = {n: p.type for n, p in declared.items()}
         types.update(NODE_PARAMETERS)
         watched.append(WatchedInstance(
             instance.name, str(instance.location), tuple(ports),

@@ -17,8 +17,9 @@ from typing import Any, Callable, Iterable, Mapping, TypeVar
 from colcon_robmosys.mapping.common import Banner, banner_of, package_xml, PackageXml
 from colcon_robmosys.mapping.component import ComponentPlan
 from colcon_robmosys.mapping.parameters import (
-    parameter_groups, parameter_page, ParameterGroup, ParameterPage)
+    camel, parameter_groups, parameter_page, ParameterGroup, ParameterPage)
 from colcon_robmosys.mapping.userfiles import UserFolders
+from colcon_robmosys.model.build_mapped import map_accessor
 from colcon_robmosys.model.types import Component, Parameter
 
 
@@ -86,6 +87,36 @@ class SpelledParameter:
     #: its ParameterRule as the language fills it (statements or arguments),
     #: none without rules beyond the descriptor
     rule: tuple[str, ...] = ()
+    #: of a mapped parameter: the array it is repeated for, and its ROS 2 name
+    #: with {} for the entry (``gains.{}.p``)
+    for_each: str = ''
+    pattern: str = ''
+
+
+@dataclass(frozen=True)
+class EntryClass:
+    """The class of the mapped parameters of one entry of an array, in a group.
+
+    ``gains.p`` and ``gains.i`` repeated for each entry of ``joints`` are read
+    as ``gains.joints_map['a'].p`` (Python), ``gains.joints_map().at("a").p()`` (C++).
+    """
+
+    cls: str
+    doc: str
+    #: the member of the group that maps each entry to its class (``joints_map``)
+    accessor: str
+    array: str
+    parameters: tuple[SpelledParameter, ...]
+
+
+@dataclass(frozen=True)
+class MappedDeclarations:
+    """The parameters a node declares for each entry of an array, once it has the array."""
+
+    array: str
+    #: the name of each, with {} for the entry: the node checks them before it declares them
+    patterns: tuple[str, ...]
+    parameters: tuple[SpelledParameter, ...]
 
 
 @dataclass(frozen=True)
@@ -98,6 +129,8 @@ class GroupClass:
     parameters: tuple[SpelledParameter, ...]
     #: (accessor, class) of each subgroup
     groups: tuple[tuple[str, str], ...]
+    #: the classes of the entries of arrays its mapped parameters are repeated for
+    mapped: tuple[EntryClass, ...] = ()
 
 
 #: a backend's class of a group
@@ -108,18 +141,45 @@ def group_classes(
         kind: type[Group], parameters: tuple[Parameter, ...],
         spelled: Mapping[str, SpelledParameter],
         names: Callable[[tuple[ParameterGroup, ...]], Mapping[tuple[str, ...], str]],
-        doc: Callable[[tuple[str, ...]], str]) -> tuple[Group, ...]:
+        doc: Callable[[tuple[str, ...]], str],
+        entry_name: Callable[[tuple[str, ...]], str] = camel) -> tuple[Group, ...]:
     """Return the classes of the groups of parameters, a subgroup first, the root last.
 
     :param spelled: the parameters as the language spells them, by name
     :param names: the classes' names, by the path of their groups
     :param doc: the docstring of a group's class, by its path
+    :param entry_name: the name of the class of an array's entries in a group,
+      by the group's path and the array (made unique here)
     """
     groups = parameter_groups(parameters)
     named = names(groups)
+    taken = set(named.values())
+
+    def entry_class(path: tuple[str, ...], array: str) -> EntryClass:
+        cls = entry_name(path + (array,))
+        while cls in taken:
+            cls += '_'
+        taken.add(cls)
+        where = '.'.join(path + ('<entry>', '*'))
+        return EntryClass(
+            cls, f'Typed access to the parameters {where} of one entry of {array}.',
+            map_accessor(array), array, tuple(
+                spelled[p.name] for p in parameters
+                if p.for_each == array and p.path[:-1] == path))
+
     return tuple(kind(
         named[g.path], doc(g.path), tuple(spelled[p.name] for p in g.parameters),
-        tuple((sub, named[g.path + (sub,)]) for sub in g.groups)) for g in groups)
+        tuple((sub, named[g.path + (sub,)]) for sub in g.groups),
+        tuple(entry_class(g.path, array) for array in g.mapped)) for g in groups)
+
+
+def mapped_declarations(parameters: Iterable[SpelledParameter]
+                        ) -> tuple[MappedDeclarations, ...]:
+    """Return the mapped parameters to declare, by array, in the order of the model."""
+    arrays = dict.fromkeys(p.for_each for p in parameters if p.for_each)
+    return tuple(MappedDeclarations(
+        array, tuple(p.pattern for p in parameters if p.for_each == array),
+        tuple(p for p in parameters if p.for_each == array)) for array in arrays)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -154,8 +214,23 @@ class ComponentContext:
 
     @property
     def rules(self) -> tuple[SpelledParameter, ...]:
-        """Return the parameters with rules beyond their descriptors."""
-        return tuple(p for p in self.parameters if p.rule)
+        """Return the parameters with rules beyond their descriptors (not the mapped ones)."""
+        return tuple(p for p in self.parameters if p.rule and not p.for_each)
+
+    @property
+    def has_rules(self) -> bool:
+        """Tell whether a parameter, mapped or not, has rules beyond its descriptor."""
+        return any(p.rule for p in self.parameters)
+
+    @property
+    def declared(self) -> tuple[SpelledParameter, ...]:
+        """Return the parameters declared once (not the mapped ones)."""
+        return tuple(p for p in self.parameters if not p.for_each)
+
+    @property
+    def mapped(self) -> tuple[MappedDeclarations, ...]:
+        """Return the mapped parameters, declared for each entry of their arrays."""
+        return mapped_declarations(self.parameters)
 
 
 #: a backend's context class

@@ -13,11 +13,12 @@ params``) from the same description.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Mapping
 
 from colcon_robmosys.mapping.names import connection_name
 from colcon_robmosys.mapping.parameters import NODE_PARAMETERS
 from colcon_robmosys.mapping.portkinds import Entity, port_kind
+from colcon_robmosys.model.parameters import node_parameters
 from colcon_robmosys.model.types import Component, Instance
 
 #: ROS 2's QoS overrides of a publisher or a subscription, as the runtime's ports
@@ -71,13 +72,19 @@ class DeclaredParameter:
 
 
 def declared_parameters(instance: Instance, component: Component,
-                        topics: dict[tuple[str, str], str]) -> tuple[DeclaredParameter, ...]:
-    """Return every parameter the node of an instance declares, the model's first."""
+                        topics: dict[tuple[str, str], str],
+                        shared: Mapping[str, Any] | None = None) -> tuple[DeclaredParameter, ...]:
+    """Return every parameter the node of an instance declares, the model's first.
+
+    A mapped parameter comes once per entry of its array, as the system sets
+    the array (``shared``: its values for every instance; the instance's own win).
+    """
+    values = {**(shared or {}), **dict(instance.parameters)}
     declared = [DeclaredParameter(
-        p.name, p.type, 'model', p.read_only,
+        name, p.type, 'model', p.read_only,
         (p.range.start, p.range.end, p.range.step) if p.range is not None else None,
         p.one_of, (p.size.min, p.size.max) if p.size is not None else None)
-        for p in component.parameters]
+        for name, p in node_parameters(component.parameters, values).items()]
     declared += [DeclaredParameter(name, type_, 'node')
                  for name, type_ in NODE_PARAMETERS.items()]
     declared += [DeclaredParameter(name, type_, 'node', True)

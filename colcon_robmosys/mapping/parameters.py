@@ -26,9 +26,12 @@ class ParameterGroup:
 
     #: () for the parameters of the node itself
     path: tuple[str, ...]
+    #: those declared once (not the mapped ones)
     parameters: tuple[Parameter, ...]
     #: the last part of each subgroup's path
     groups: tuple[str, ...]
+    #: the arrays its mapped parameters are repeated for (``gains.p``, ``for_each: joints``)
+    mapped: tuple[str, ...] = ()
 
 
 def parameter_groups(parameters: tuple[Parameter, ...]) -> tuple[ParameterGroup, ...]:
@@ -38,10 +41,15 @@ def parameter_groups(parameters: tuple[Parameter, ...]) -> tuple[ParameterGroup,
         for end in range(1, len(parameter.path)):
             if parameter.path[:end] not in paths:
                 paths.append(parameter.path[:end])
-    groups = [ParameterGroup(
-        path, tuple(p for p in parameters if p.path[:-1] == path),
-        tuple(g[-1] for g in paths if len(g) == len(path) + 1 and g[:-1] == path))
-        for path in paths]
+
+    def group(path: tuple[str, ...]) -> ParameterGroup:
+        members = [p for p in parameters if p.path[:-1] == path]
+        return ParameterGroup(
+            path, tuple(p for p in members if p.for_each is None),
+            tuple(g[-1] for g in paths if len(g) == len(path) + 1 and g[:-1] == path),
+            tuple(dict.fromkeys(p.for_each for p in members if p.for_each is not None)))
+
+    groups = [group(path) for path in paths]
     return tuple(sorted(groups, key=lambda g: -len(g.path)))
 
 
@@ -128,6 +136,8 @@ def parameter_page(component: Component, banner: Banner) -> ParameterPage | None
     if not component.parameters:
         return None
     return ParameterPage(banner, component.name, component.package, tuple(
-        ParameterRow(p.name, p.type, shown_default(p), p.read_only, tuple(constraints(p)),
+        ParameterRow(p.shown_name, p.type, shown_default(p), p.read_only,
+                     tuple(([f'one per entry of {p.for_each}'] if p.for_each else []) +
+                           constraints(p)),
                      p.on_change, p.description)
         for p in component.parameters))

@@ -24,7 +24,7 @@ from colcon_robmosys.mapping.names import connection_name
 from colcon_robmosys.mapping.parameters import NODE_PARAMETERS
 from colcon_robmosys.mapping.portkinds import port_kind
 from colcon_robmosys.mapping.qos import override_parameters
-from colcon_robmosys.model.parameters import freeze_parameter_value
+from colcon_robmosys.model.parameters import freeze_parameter_value, node_parameters
 from colcon_robmosys.model.types import (
     Component, Instance, PortRef, Role, System, Workspace)
 
@@ -201,10 +201,13 @@ def _remappings(instance: Instance, component: Component,
 def _parameters(system: System, components: dict[str, Component],
                 topics: dict[tuple[str, str], str]) -> tuple[NodeParameters, ...]:
     nodes = []
+    # by ROS 2 name: a mapped parameter once per entry of its array
+    declared = {i.name: node_parameters(components[i.name].parameters, {
+        **dict(system.parameters), **dict(i.parameters)}) for i in system.instances}
     if system.parameters:
         # '/**' first: rcl takes the entries of a node in the order of the
         # file, so a node's own values, later, win
-        types = {p.name: p.type for c in components.values() for p in c.parameters}
+        types = {n: p.type for d in declared.values() for n, p in d.items()}
         types.update(NODE_PARAMETERS)
         nodes.append(NodeParameters('/**', tuple(
             (name, freeze_parameter_value(types[name], value))
@@ -212,7 +215,7 @@ def _parameters(system: System, components: dict[str, Component],
     for instance in system.instances:
         component = components[instance.name]
         types = dict(NODE_PARAMETERS)
-        types.update((p.name, p.type) for p in component.parameters)
+        types.update((n, p.type) for n, p in declared[instance.name].items())
         # ROS 2 refuses an integer for a parameter declared as double
         values = [(name, freeze_parameter_value(types[name], value))
                   for name, value in instance.parameters]
@@ -318,7 +321,8 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
         processes=system.processes,
         watched=watched_instances(system, components, topics),
         model_files=tuple(sorted(_installed_models(workspace).items())),
-        declared=tuple((i.name, declared_parameters(i, components[i.name], topics))
+        declared=tuple((i.name, declared_parameters(i, components[i.name], topics,
+                                                    dict(system.parameters)))
                        for i in system.instances),
         executors=shared_executors(system.executor, components.values()),
         depends=packages, exec_depends=exec_depends,

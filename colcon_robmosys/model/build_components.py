@@ -12,7 +12,8 @@ from typing import Any
 
 from colcon_robmosys.errors import Diagnostic, Location
 from colcon_robmosys.model import schema_messages
-from colcon_robmosys.model.build_base import BuilderBase, choices
+from colcon_robmosys.model.build_base import choices
+from colcon_robmosys.model.build_mapped import MappedParameterBuilder
 from colcon_robmosys.model.fieldtypes import parse_interface, TypeNameError
 from colcon_robmosys.model.loader import NodePath, RawData
 from colcon_robmosys.model.parameters import (
@@ -22,7 +23,7 @@ from colcon_robmosys.model.types import (
     ParameterRange, ParameterSize, Pattern, PATTERN_INTERFACE, Port, QoS, Role)
 
 
-class ComponentBuilder(BuilderBase):
+class ComponentBuilder(MappedParameterBuilder):
     """Components, with the rules a single component has to follow."""
 
     def component(self, path: NodePath, raw: RawData,
@@ -83,6 +84,7 @@ class ComponentBuilder(BuilderBase):
                     self.error(kpath, f"unknown function '{listed}'" + choices(function_names))
         self._check_member_names(path, ports, functions, activities,
                                  parameters)
+        self._check_mapped(path, parameters)
         external = raw.get('external') or {}
         for port in ports:
             if port.ros_name is not None and not external:
@@ -216,7 +218,8 @@ class ComponentBuilder(BuilderBase):
             self._size(path, name, raw), raw.get('validate'),
             tuple([on_change] if isinstance(on_change, str) else on_change),
             self.at(path + ('validate',)) if 'validate' in raw else None,
-            self.at(path + ('on_change',)) if on_change else None)
+            self.at(path + ('on_change',)) if on_change else None,
+            raw.get('for_each'), self.at(path + ('for_each',)) if 'for_each' in raw else None)
         if parameter.read_only and on_change:
             self.error(path + ('on_change',), f"parameter '{name}': 'on_change' has no "
                        'meaning for a read-only parameter: it never changes after start',

@@ -118,11 +118,30 @@ class Parameter:
     #: where ``validate`` and ``on_change`` stand
     validate_location: Location | None = None
     on_change_location: Location | None = None
+    #: the string array it is repeated for: one parameter per entry (a mapped parameter)
+    for_each: str | None = None
+    for_each_location: Location | None = None
 
     @property
     def path(self) -> tuple[str, ...]:
         """Return the groups of the name, then its last part."""
         return tuple(self.name.split('.'))
+
+    def ros_name(self, entry: str = '') -> str:
+        """Return the ROS 2 name: of a mapped parameter, the one of an entry of its array.
+
+        ``gains.p`` repeated for each entry of ``joints`` is ``gains.<entry>.p``,
+        ``gain`` is ``<entry>.gain`` (generate_parameter_library's
+        ``gains.__map_joints.p``).
+        """
+        if self.for_each is None:
+            return self.name
+        return '.'.join(self.path[:-1] + (entry, self.path[-1]))
+
+    @property
+    def shown_name(self) -> str:
+        """Return the name as its documentation writes it (``gains.<joints>.p``)."""
+        return self.ros_name(f'<{self.for_each}>')
 
 
 @dataclass(frozen=True)

@@ -6,7 +6,8 @@
 from __future__ import annotations
 
 import math
-from typing import Any, Callable
+import re
+from typing import Any, Callable, Mapping, Sequence
 
 from colcon_robmosys.model.components import Parameter
 
@@ -96,3 +97,63 @@ def rule_problem(parameter: Parameter, value: Any) -> str | None:
         if size.max is not None and len(value) > size.max:
             return f'{value!r} has {len(value)} {unit}, more than {size.max}'
     return None
+
+
+#: an entry of an array that parameters are repeated for: one part of a parameter name
+_ENTRY = re.compile(r'(?!.*__)[A-Za-z][A-Za-z0-9_]*\Z')
+
+
+def entries_problem(parameters: Sequence[Parameter], array: str,
+                    entries: Sequence[Any]) -> str | None:
+    """Return why the entries of an array cannot each have the parameters mapped over it.
+
+    Each entry is one part of a parameter name, listed once, and none of the
+    names it gives is a parameter the node has already. The generated nodes
+    refuse such a value at start with the same words (robmosys_runtime's
+    ``map_entries``).
+    """
+    mapped = [p for p in parameters if p.for_each == array]
+    if not mapped:
+        return None
+    fixed = {p.name for p in parameters if p.for_each is None}
+    seen: set[str] = set()
+    for entry in entries:
+        if not isinstance(entry, str) or not _ENTRY.match(entry):
+            return (f'entry {entry!r} is not a parameter name part (a letter, then '
+                    'letters, digits and single underscores)')
+        if entry in seen:
+            return f'entry {entry!r} is listed twice'
+        seen.add(entry)
+        clash = next((p.ros_name(entry) for p in mapped if p.ros_name(entry) in fixed), None)
+        if clash is not None:
+            return f"entry {entry!r} gives the parameter '{clash}', which the component has"
+    return None
+
+
+def array_entries(parameters: Sequence[Parameter], array: str,
+                  values: Mapping[str, Any] | None = None) -> tuple[str, ...]:
+    """Return the entries of an array: its value in ``values`` if they fit, else its default."""
+    value = (values or {}).get(array)
+    if isinstance(value, (list, tuple)) and not entries_problem(parameters, array, value):
+        return tuple(value)
+    default = next((p.default for p in parameters if p.name == array), ())
+    return tuple(default) if isinstance(default, tuple) else ()
+
+
+def node_parameters(parameters: Sequence[Parameter],
+                    values: Mapping[str, Any] | None = None) -> dict[str, Parameter]:
+    """Return every parameter a node of the component declares, by its ROS 2 name.
+
+    A mapped parameter (``for_each``) comes once per entry of its array: the
+    array's value in ``values`` (parameter name -> value, as a system or a
+    parameter file sets them), else its default. ``Parameter.for_each`` tells
+    a mapped parameter, ``Parameter.ros_name(entry)`` its name for an entry.
+    """
+    named: dict[str, Parameter] = {}
+    for parameter in parameters:
+        if parameter.for_each is None:
+            named[parameter.name] = parameter
+            continue
+        for entry in array_entries(parameters, parameter.for_each, values):
+            named.setdefault(parameter.ros_name(entry), parameter)
+    return named

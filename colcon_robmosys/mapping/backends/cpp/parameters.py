@@ -10,7 +10,7 @@ from typing import Any
 from colcon_robmosys.mapping.backends.cpp.context import CppParameter, CppParameterGroup
 from colcon_robmosys.mapping.context import group_classes, ParameterRange
 from colcon_robmosys.mapping.literals import cpp_str, split_literal
-from colcon_robmosys.mapping.parameters import group_class_names, ParameterGroup
+from colcon_robmosys.mapping.parameters import camel, group_class_names, ParameterGroup
 from colcon_robmosys.model.types import Parameter
 
 #: model type -> (C++ type, ParameterValue accessor)
@@ -94,7 +94,8 @@ def cpp_parameter(parameter: Parameter, cls: str) -> CppParameter:
         doc=parameter.description or f'The parameter {parameter.name}.',
         read_only='true' if parameter.read_only else 'false',
         range=_range(parameter), attr=parameter.path[-1],
-        rule=tuple(_rule_lines(parameter, cls, ctype)))
+        rule=tuple(_rule_lines(parameter, cls, ctype)), for_each=parameter.for_each or '',
+        pattern=parameter.ros_name('{}') if parameter.for_each else '')
 
 
 def _rule_lines(parameter: Parameter, cls: str, ctype: str) -> list[str]:
@@ -134,4 +135,5 @@ def cpp_parameter_groups(parameters: tuple[Parameter, ...],
 
     return group_classes(
         CppParameterGroup, parameters, {p.name: p for p in spelled}, names,
-        lambda path: f'Typed access to the parameters {".".join(path)}.*.' if path else '')
+        lambda path: f'Typed access to the parameters {".".join(path)}.*.' if path else '',
+        lambda path: f'{camel(path)}Entry')

@@ -219,9 +219,12 @@ def _includes(plan: ComponentPlan, has_rules: bool) -> CppIncludes:
         ros.append('rclcpp_action/rclcpp_action.hpp')
     if any(p.type.endswith('[]') for p in plan.parameters):
         system.append('vector')
+    mapped = any(p.for_each for p in plan.parameters)
+    if mapped:
+        system.append('map')
     ros += sorted({header_name(p.type) for p in plan.ports})
     ros += ['robmosys_runtime/component_node.hpp'] + (
-        ['robmosys_runtime/parameters.hpp'] if has_rules else []) + sorted(
+        ['robmosys_runtime/parameters.hpp'] if has_rules or mapped else []) + sorted(
         {ENTITIES[e].runtime_header for e in plan.entities if ENTITIES[e].runtime_header})
     return CppIncludes(tuple(sorted(set(system))), tuple(ros))
 

@@ -21,7 +21,7 @@ from colcon_robmosys.mapping.component import (
     ComponentPlan, FunctionPlan, PortPlan)
 from colcon_robmosys.mapping.context import (
     component_context, group_classes, GroupClass, ParameterRange)
-from colcon_robmosys.mapping.parameters import group_class_names
+from colcon_robmosys.mapping.parameters import camel, group_class_names
 from colcon_robmosys.mapping.portkinds import Entity, Returns
 from colcon_robmosys.mapping.qos import resolve_qos
 from colcon_robmosys.mapping.userfiles import UserFolders
@@ -119,6 +119,8 @@ def _node_imports(names: dict[InterfaceRef, str], plan: ComponentPlan,
         _add(modules, f'{ref.package}.{ref.kind.value}', {f'{ref.name}{alias}'})
     if any(_rule(p) for p in plan.parameters):
         _add(modules, 'robmosys_runtime', {'ParameterRule', 'ParameterRules'})
+    if any(p.for_each for p in plan.parameters):
+        _add(modules, 'robmosys_runtime', {'map_entries'})
     if plan.parameters:
         _add(modules, 'rcl_interfaces.msg', {'ParameterDescriptor'})
         for parameter in plan.parameters:
@@ -252,7 +254,8 @@ def _parameter(parameter: Parameter) -> PyParameter:
         doc=_doc(f'Return the parameter {parameter.name}.',
                  parameter.description),
         read_only=parameter.read_only, range=_range(parameter),
-        attr=parameter.path[-1], rule=_rule(parameter))
+        attr=parameter.path[-1], rule=_rule(parameter), for_each=parameter.for_each or '',
+        pattern=parameter.ros_name('{}') if parameter.for_each else '')
 
 
 def _rule(parameter: Parameter) -> tuple[str, ...]:
@@ -331,7 +334,8 @@ def spell_python(component: Component, plan: ComponentPlan,
             GroupClass, plan.parameters, spelled,
             lambda groups: group_class_names(groups, f'{cls}Parameters'),
             lambda path: f'Typed access to the parameters {".".join(path)}.* of {cls}.'
-            if path else f'Typed access to the current parameter values of {cls}.'),
+            if path else f'Typed access to the current parameter values of {cls}.',
+            lambda path: f'{cls}Parameters{camel(path)}Entry'),
         transitions=tuple(PyTransition(t, methods(tuple(f), 16, len(repr(t)) + 2))
                           for t, f in plan.lifecycle if f),
         depends=plan.depends, exec_depends=exec_depends)

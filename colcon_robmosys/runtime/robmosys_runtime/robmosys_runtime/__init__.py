@@ -22,7 +22,8 @@ if TYPE_CHECKING:
     from robmosys_runtime.main import executor_threads, run  # noqa: F401
     from robmosys_runtime.activity import Activity  # noqa: F401
     from robmosys_runtime.node import ComponentNode  # noqa: F401
-    from robmosys_runtime.parameters import ParameterRule, ParameterRules  # noqa: F401
+    from robmosys_runtime.parameters import (  # noqa: F401
+        map_entries, ParameterRule, ParameterRules)
     from robmosys_runtime.ports import ActionClientPort, QueryClient, wait_for  # noqa: F401
 
 __version__ = '0.1.0'
@@ -32,7 +33,8 @@ _MODULES = {
     'ActionClientPort': 'ports', 'Activity': 'activity', 'ComponentNode': 'node',
     'EventActivation': 'events', 'EventClient': 'events', 'EventServer': 'events',
     'ParameterRule': 'parameters', 'ParameterRules': 'parameters', 'QueryClient': 'ports',
-    'copy_fields': 'events', 'executor_threads': 'main', 'run': 'main', 'wait_for': 'ports',
+    'copy_fields': 'events', 'executor_threads': 'main', 'map_entries': 'parameters',
+    'run': 'main', 'wait_for': 'ports',
 }
 
 __all__ = sorted(_MODULES)

@@ -17,15 +17,16 @@ The words of the reasons are those of colcon-robmosys's own checks of models.
 
 from __future__ import annotations
 
+import re
 import traceback
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Sequence
 
 from rcl_interfaces.msg import SetParametersResult
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from robmosys_runtime.rules import ParameterRule, rule_problem, Validator
 
-__all__ = ['ParameterRule', 'ParameterRules', 'rule_problem', 'Validator']
+__all__ = ['map_entries', 'ParameterRule', 'ParameterRules', 'rule_problem', 'Validator']
 
 
 class ParameterRules:
@@ -49,6 +50,10 @@ class ParameterRules:
         """Run the validators on every change from now on, and the on_change functions."""
         self._started = True
         self._node.add_post_set_parameters_callback(self._after_set)
+
+    def add(self, name: str, rule: ParameterRule) -> None:
+        """Add the rule of a parameter declared later (one of a mapped group's)."""
+        self._rules[name] = rule
 
     def problem(self, name: str, value: Any) -> Optional[str]:
         """Return why a parameter may not take a value: its rules, then its validator."""
@@ -89,3 +94,36 @@ class ParameterRules:
                 except Exception:  # noqa: B902 - a failing function must not stop the node
                     self._node.get_logger().error(
                         f'on_change of {parameter.name} failed:\n' + traceback.format_exc())
+
+
+#: an entry of an array that parameters are repeated for: one part of a parameter name
+_ENTRY = re.compile(r'(?!.*__)[A-Za-z][A-Za-z0-9_]*\Z')
+
+
+def map_entries(node: Node, array: str, patterns: Sequence[str]) -> List[str]:
+    """
+    Return the entries of an array parameter that mapped parameters are repeated for.
+
+    Each entry is one part of a parameter name, listed once, and none of the
+    names it gives (``patterns``, ``{}`` for the entry) is a parameter the node
+    has already; ValueError says which is not, in colcon-robmosys's words.
+    """
+    entries: List[str] = list(node.get_parameter(array).value or ())
+    seen = set()
+    for entry in entries:
+        problem = None
+        if not _ENTRY.match(entry):
+            problem = (f'entry {entry!r} is not a parameter name part (a letter, then '
+                       'letters, digits and single underscores)')
+        elif entry in seen:
+            problem = f'entry {entry!r} is listed twice'
+        else:
+            clash = next((p.format(entry) for p in patterns
+                          if node.has_parameter(p.format(entry))), None)
+            if clash is not None:
+                problem = (f"entry {entry!r} gives the parameter '{clash}', which the "
+                           'component has')
+        if problem is not None:
+            raise ValueError(f"parameter '{array}': {problem}")
+        seen.add(entry)
+    return entries

@@ -23,6 +23,7 @@
 #include "robmosys_runtime/event_client.hpp"
 #include "robmosys_runtime/event_server.hpp"
 #include "robmosys_runtime/main.hpp"
+#include "robmosys_runtime/parameters.hpp"
 #include "robmosys_runtime/query_client.hpp"
 
 using namespace std::chrono_literals;
@@ -295,12 +296,42 @@ void a_throwing_hook_fails_its_transition()
   runtime.stop();
 }
 
+/// Return the message map_entries refuses the entries with, or "" if it accepts them.
+std::string map_entries_problem(const std::vector<std::string> & joints)
+{
+  auto node = std::make_shared<rclcpp_lifecycle::LifecycleNode>("mapped");
+  node->declare_parameter("joints", joints);
+  node->declare_parameter("wrist.gain", 1.0);
+  try {
+    EXPECT(robmosys_runtime::map_entries(*node, "joints", {"{}.gain", "gains.{}.p"}) == joints);
+  } catch (const std::invalid_argument & error) {
+    return error.what();
+  }
+  return "";
+}
+
+void mapped_entries_are_checked_as_the_model_checks_them()
+{
+  Runtime runtime;
+  EXPECT(robmosys_runtime::mapped_name("gains.{}.p", "elbow") == "gains.elbow.p");
+  EXPECT(map_entries_problem({"shoulder", "elbow"}).empty());
+  EXPECT(map_entries_problem({"a", "a"}) == "parameter 'joints': entry 'a' is listed twice");
+  EXPECT(
+    map_entries_problem({"a__b"}) == "parameter 'joints': entry 'a__b' is not a parameter "
+    "name part (a letter, then letters, digits and single underscores)");
+  EXPECT(!map_entries_problem({"1a"}).empty());
+  EXPECT(!map_entries_problem({"a.b"}).empty());
+  EXPECT(
+    map_entries_problem({"wrist"}) == "parameter 'joints': entry 'wrist' gives the parameter "
+    "'wrist.gain', which the component has");
+}
+
 int main()
 {
   for (const auto & test : std::vector<std::function<void()>>{
     query_client, events_reach_the_activations_whose_condition_holds,
     component_ports_live_from_configure_to_cleanup, queries_are_answered_while_active_only,
-    a_throwing_hook_fails_its_transition})
+    a_throwing_hook_fails_its_transition, mapped_entries_are_checked_as_the_model_checks_them})
   {
     try {
       test();

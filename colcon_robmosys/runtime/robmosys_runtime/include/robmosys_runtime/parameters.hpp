@@ -6,6 +6,8 @@
 #ifndef ROBMOSYS_RUNTIME__PARAMETERS_HPP_
 #define ROBMOSYS_RUNTIME__PARAMETERS_HPP_
 
+#include <algorithm>
+#include <cctype>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
@@ -283,6 +285,71 @@ private:
   rclcpp::node_interfaces::OnSetParametersCallbackHandle::SharedPtr on_set_;
   rclcpp::node_interfaces::PostSetParametersCallbackHandle::SharedPtr post_set_;
 };
+
+/// Return the name of a mapped parameter for an entry: its pattern, the entry for its {}.
+inline std::string mapped_name(const std::string & pattern, const std::string & entry)
+{
+  std::string name = pattern;
+  const std::size_t at = name.find("{}");
+  if (at != std::string::npos) {
+    name.replace(at, 2, entry);
+  }
+  return name;
+}
+
+/// Tell whether an entry is one part of a parameter name (as colcon-robmosys's checks).
+inline bool is_name_part(const std::string & entry)
+{
+  const auto first = entry.empty() ? 0 : static_cast<unsigned char>(entry[0]);
+  if (first >= 128 || !std::isalpha(first) ||
+    entry.find("__") != std::string::npos)
+  {
+    return false;
+  }
+  return std::all_of(
+    entry.begin(), entry.end(), [](char c) {
+      const auto byte = static_cast<unsigned char>(c);
+      return c == '_' || (byte < 128 && std::isalnum(byte));
+    });
+}
+
+/// Return the entries of an array parameter that mapped parameters are repeated for.
+/**
+ * Each entry is one part of a parameter name, listed once, and none of the
+ * names it gives (patterns, {} for the entry) is a parameter the node has
+ * already; std::invalid_argument says which is not, in the words of
+ * robmosys_runtime's Python module.
+ */
+inline std::vector<std::string> map_entries(
+  rclcpp_lifecycle::LifecycleNode & node, const std::string & array,
+  const std::vector<std::string> & patterns)
+{
+  const std::vector<std::string> entries = node.get_parameter(array).as_string_array();
+  std::vector<std::string> seen;
+  for (const auto & entry : entries) {
+    std::string problem;
+    if (!is_name_part(entry)) {
+      problem = "entry " + detail::shown(entry) + " is not a parameter name part (a letter, " +
+        "then letters, digits and single underscores)";
+    } else if (std::find(seen.begin(), seen.end(), entry) != seen.end()) {
+      problem = "entry " + detail::shown(entry) + " is listed twice";
+    } else {
+      for (const auto & pattern : patterns) {
+        const std::string name = mapped_name(pattern, entry);
+        if (node.has_parameter(name)) {
+          problem = "entry " + detail::shown(entry) + " gives the parameter '" + name +
+            "', which the component has";
+          break;
+        }
+      }
+    }
+    if (!problem.empty()) {
+      throw std::invalid_argument("parameter '" + array + "': " + problem);
+    }
+    seen.push_back(entry);
+  }
+  return entries;
+}
 
 }  // namespace robmosys_runtime
 

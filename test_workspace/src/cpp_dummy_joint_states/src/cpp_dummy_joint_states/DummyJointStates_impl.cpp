@@ -7,6 +7,7 @@
 #include "cpp_dummy_joint_states/DummyJointStates_impl.hpp"
 
 #include <cmath>
+#include <cstddef>
 #include <memory>
 
 namespace cpp_dummy_joint_states
@@ -18,6 +19,11 @@ void DummyJointStates_impl::fInit()
   msg_ = sensor_msgs::msg::JointState();
   msg_.name = params().joint_names();
   msg_.position.assign(msg_.name.size(), 0.0);
+  amplitudes_.clear();
+  const auto joints = params().joint_names_map();
+  for (const auto & name : msg_.name) {
+    amplitudes_.push_back(joints.at(name).amplitude());
+  }
   counter_ = 0;
 }
 
@@ -27,7 +33,9 @@ void DummyJointStates_impl::fPublish()
   ++counter_;
   msg_.header.stamp = now();
   const double angle = std::sin(static_cast<double>(counter_) * params().speed());
-  msg_.position.assign(msg_.name.size(), angle);
+  for (std::size_t i = 0; i < msg_.position.size(); ++i) {
+    msg_.position[i] = angle * amplitudes_[i];
+  }
   joint_states->publish(msg_);
 }
 

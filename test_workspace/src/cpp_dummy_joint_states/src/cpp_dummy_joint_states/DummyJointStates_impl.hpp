@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "cpp_dummy_joint_states/DummyJointStates.hpp"
 #include "sensor_msgs/msg/joint_state.hpp"
@@ -28,6 +29,8 @@ protected:
 private:
   sensor_msgs::msg::JointState msg_;
   int64_t counter_{0};
+  /// The amplitude of each joint, by its place in msg_ (parameters <joint>.amplitude).
+  std::vector<double> amplitudes_;
 };
 
 }  // namespace cpp_dummy_joint_states

@@ -32,6 +32,19 @@ rclcpp::QoS qos_joint_states()
 
 }  // namespace
 
+DummyJointStates::Parameters::JointNamesEntry::JointNamesEntry(
+  rclcpp_lifecycle::LifecycleNode & node, const std::string & entry)
+: node_(node),
+  entry_(entry)
+{
+}
+
+double DummyJointStates::Parameters::JointNamesEntry::amplitude() const
+{
+  return node_.get_parameter(
+    robmosys_runtime::mapped_name("{}.amplitude", entry_)).as_double();
+}
+
 DummyJointStates::Parameters::Parameters(rclcpp_lifecycle::LifecycleNode & node)
 : node_(node)
 {
@@ -45,6 +58,16 @@ std::vector<std::string> DummyJointStates::Parameters::joint_names() const
 double DummyJointStates::Parameters::speed() const
 {
   return node_.get_parameter("speed").as_double();
+}
+
+std::map<std::string, DummyJointStates::Parameters::JointNamesEntry>
+DummyJointStates::Parameters::joint_names_map() const
+{
+  std::map<std::string, JointNamesEntry> entries;
+  for (const auto & entry : node_.get_parameter("joint_names").as_string_array()) {
+    entries.emplace(entry, JointNamesEntry(node_, entry));
+  }
+  return entries;
 }
 
 DummyJointStates::DummyJointStates(const rclcpp::NodeOptions & options)
@@ -82,6 +105,30 @@ DummyJointStates::DummyJointStates(
     descriptor.floating_point_range.push_back(range);
     const double default_value = 0.05;
     declare_parameter<double>("speed", default_value, descriptor);
+  }
+  {
+    // one group per entry of joint_names, declared once it is
+    std::vector<std::string> patterns;
+    patterns.push_back("{}.amplitude");
+    const std::vector<std::string> entries =
+      robmosys_runtime::map_entries(*this, "joint_names", patterns);
+    for (const auto & entry : entries) {
+      {
+        const std::string name = robmosys_runtime::mapped_name("{}.amplitude", entry);
+        rcl_interfaces::msg::ParameterDescriptor descriptor;
+        descriptor.description =
+          "The swing of a joint in radians (one parameter per joint, e.g. "
+          "joint1.amplitude).";
+        descriptor.read_only = false;
+        rcl_interfaces::msg::FloatingPointRange range;
+        range.from_value = 0.0;
+        range.to_value = 3.0;
+        range.step = 0.0;
+        descriptor.floating_point_range.push_back(range);
+        const double default_value = 1.0;
+        declare_parameter<double>(name, default_value, descriptor);
+      }
+    }
   }
   add_activity("Publish");
   set_lifecycle(

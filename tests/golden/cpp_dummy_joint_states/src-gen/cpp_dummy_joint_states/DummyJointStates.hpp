@@ -5,6 +5,7 @@
 
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "rclcpp_lifecycle/lifecycle_publisher.hpp"
 #include "sensor_msgs/msg/joint_state.hpp"
 #include "robmosys_runtime/component_node.hpp"
+#include "robmosys_runtime/parameters.hpp"
 
 namespace cpp_dummy_joint_states
 {
@@ -29,6 +31,20 @@ public:
   class Parameters
   {
 public:
+    /// Typed access to the parameters <entry>.* of one entry of joint_names.
+    class JointNamesEntry
+    {
+public:
+      JointNamesEntry(rclcpp_lifecycle::LifecycleNode & node, const std::string & entry);
+
+      /// The swing of a joint in radians (one parameter per joint, e.g. joint1.amplitude).
+      double amplitude() const;
+
+private:
+      rclcpp_lifecycle::LifecycleNode & node_;
+      std::string entry_;
+    };
+
     explicit Parameters(rclcpp_lifecycle::LifecycleNode & node);
 
     /// The joints whose states are published.
@@ -36,6 +52,9 @@ public:
 
     /// Radians per period.
     double speed() const;
+
+    /// Return the parameters of each entry of joint_names, by entry.
+    std::map<std::string, JointNamesEntry> joint_names_map() const;
 
 private:
     rclcpp_lifecycle::LifecycleNode & node_;
