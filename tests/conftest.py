@@ -83,16 +83,21 @@ def build_workspace(src: Path, root: Path, *extra: str) -> BuiltWorkspace:
 
 
 @pytest.fixture(scope='session')
-def test_workspace_built() -> BuiltWorkspace:
-    """Return test_workspace, built in place once per test session.
+def test_workspace_built(tmp_path_factory) -> BuiltWorkspace:
+    """Return test_workspace, built once per test session.
 
-    It is built where ``make demo`` builds it (``workspace.bases_of``), so that after
-    the demo (CI runs it first) this build finds nothing to do. A lock keeps two test
-    sessions of one distribution from building it at the same time.
+    With the repository's own venv of its distribution, it is built in place, where
+    ``make demo`` builds it (``workspace.bases_of``), so that after the demo (CI runs it
+    first) this build finds nothing to do; a lock keeps two test sessions from
+    building it at the same time. Any other venv (another prefix, with other
+    packages and another Python) builds a copy of its own.
     """
     if ros_missing_reason():
         pytest.skip(ros_missing_reason())
-    bases = workspace.bases_of(workspace.venv_distribution())
+    distribution = workspace.venv_distribution()
+    if Path(sys.prefix).resolve() != (REPO / workspace.DEFAULT_VENVS[distribution]).resolve():
+        return build_workspace(TEST_WORKSPACE / 'src', tmp_path_factory.mktemp('test_ws'))
+    bases = workspace.bases_of(distribution)
     (TEST_WORKSPACE / bases.build).mkdir(exist_ok=True)
     with open(TEST_WORKSPACE / bases.build / '.tests.lock', 'w') as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)

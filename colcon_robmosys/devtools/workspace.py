@@ -15,6 +15,8 @@ from dataclasses import dataclass
 from importlib import metadata
 
 DISTRIBUTIONS = ('kilted', 'jazzy')
+#: the venv of each distribution in the repository (the Makefile's VENV)
+DEFAULT_VENVS = {'kilted': '.venv', 'jazzy': '.venv-jazzy'}
 
 
 def venv_distribution() -> str:

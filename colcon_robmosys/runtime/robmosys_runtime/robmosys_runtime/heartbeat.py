@@ -82,7 +82,8 @@ class Heartbeat:
                 if not stopping.is_set():
                     self.heard(answers, {n for n in names if states[n] == 'failed'})
 
-    def heard(self, answers: Dict[str, Optional[str]], failed: AbstractSet[str] = frozenset()) -> None:
+    def heard(self, answers: Dict[str, Optional[str]],
+              failed: AbstractSet[str] = frozenset()) -> None:
         """Take the answers of one heartbeat (None: no answer) of instances, failed ones of it."""
         back: List[str] = []
         for name, answer in sorted(answers.items()):
