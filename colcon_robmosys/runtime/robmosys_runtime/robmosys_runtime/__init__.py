@@ -17,10 +17,10 @@ from importlib import import_module
 from typing import Any, List, TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from robmosys_runtime.activity import Activity  # noqa: F401
     from robmosys_runtime.events import (  # noqa: F401
         copy_fields, EventActivation, EventClient, EventServer)
     from robmosys_runtime.main import executor_threads, run  # noqa: F401
-    from robmosys_runtime.activity import Activity  # noqa: F401
     from robmosys_runtime.node import ComponentNode  # noqa: F401
     from robmosys_runtime.parameters import (  # noqa: F401
         map_entries, ParameterRule, ParameterRules)
