@@ -12,24 +12,27 @@ everything goes through one renderer and one writer.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from functools import partial
 import os
 from pathlib import Path
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
 from colcon_robmosys.generators.component import component_package
+from colcon_robmosys.generators.durable import Durable
 from colcon_robmosys.generators.files import FileSpec, PackageFiles, UserFile
 from colcon_robmosys.generators.interfaces import interfaces_package
 from colcon_robmosys.generators.manifest import (
     digest, MANIFEST, Manifest, read_manifest, unchanged_since,
     write_manifest)
 from colcon_robmosys.generators.render import render
-from colcon_robmosys.generators.stamp import StampStore
+from colcon_robmosys.generators.stamp import (
+    fingerprint, StampStore, user_digest, WatchedFolders)
 from colcon_robmosys.generators.system import system_package
 from colcon_robmosys.generators.usercode import (
     check_user_file, merge_conflicts, orphan_problems, user_tree)
 from colcon_robmosys.generators.writer import (
-    create_user_file, GENERATED_MARKER, is_generated, read_current,
-    remove_generated, remove_leftovers, sync_folders, write_generated)
+    GENERATED_MARKER, is_generated, make_executable, read_current,
+    remove_generated, remove_leftovers, write_generated)
 from colcon_robmosys.mapping.backends import backend
 from colcon_robmosys.mapping.common import INSTALLED_MODEL
 from colcon_robmosys.mapping.component import plan_component
@@ -38,10 +41,10 @@ from colcon_robmosys.mapping.system import plan_system
 from colcon_robmosys.mapping.userfiles import user_folders
 from colcon_robmosys.model.types import Component, ServiceDefinition, Workspace
 
-__all__ = ['create_missing_user_files', 'FileSpec', 'generate_package',
-           'GenerationReport', 'MANIFEST', 'PackageFiles', 'plan_package',
-           'read_manifest', 'StampStore', 'unchanged_package', 'UserFile',
-           'write_tree']
+__all__ = ['create_missing_user_files', 'Durable', 'FileSpec', 'fingerprint',
+           'generate_package', 'GenerationReport', 'MANIFEST', 'PackageFiles',
+           'plan_package', 'read_manifest', 'StampStore', 'unchanged_package',
+           'UserFile', 'write_tree']
 
 
 @dataclass
@@ -87,11 +90,16 @@ class InstalledModel:
     text: str
 
 
-def create_missing_user_files(package: PackageFiles) -> list[Path]:
+def create_missing_user_files(package: PackageFiles,
+                              durable: Durable | None = None) -> list[Path]:
     """Create the implementation files the user lacks, from the model.
 
     Existing files are never touched.
 
+    :param durable: where to leave the files to create, for the caller to
+      commit with others (the files are then not created yet, and the list
+      returned is empty: the commit returns them); without, they are created
+      and made durable before this returns
     :raises RobmosysError: if implementation files of a component the model
       no longer has lie there: a fresh file beside them would leave the
       user's code behind, unnoticed
@@ -99,21 +107,17 @@ def create_missing_user_files(package: PackageFiles) -> list[Path]:
     orphans = orphan_problems(package)
     if orphans:
         raise RobmosysError(orphans)
-    created = []
+    batch = Durable() if durable is None else durable
     for user_file in package.user_files:
         path = package.model_dir / user_file.source_path
         if path.exists() or path.is_symlink():
             continue  # the user's: rendering it would be for nothing
-        text = render(user_file.template, user_file.context)
-        if create_user_file(path, text.encode('utf-8')):
-            created.append(path)
-    # each file was synced before it was linked; now its folder's entry
-    sync_folders(p.parent for p in created)
-    return created
+        batch.create(path, render(user_file.template, user_file.context).encode('utf-8'))
+    return batch.commit() if durable is None else []
 
 
 def generate_package(package: PackageFiles, out_dir: Path, *,
-                     sync: bool = False, stamps: StampStore | None = None,
+                     durable: Durable | None = None, stamps: StampStore | None = None,
                      fingerprint: str = '',
                      standalone: bool = True) -> GenerationReport:
     """Write the files of a package into out_dir.
@@ -126,8 +130,9 @@ def generate_package(package: PackageFiles, out_dir: Path, *,
       build uses them where they are (``ROBMOSYS_SOURCE_DIR``, set by the
       build task)
 
-    :param sync: make every file written durable (fsync, then each folder
-      once): for output a user keeps, not for the build tree
+    :param durable: leave the writes to it, to be made durable with the
+      others of the run when the caller commits it: for output a user keeps,
+      not for the build tree (the report tells what the commit writes)
     :param stamps: where to record the generation, under the fingerprint
       of its inputs (see :func:`unchanged_package`)
 
@@ -136,7 +141,10 @@ def generate_package(package: PackageFiles, out_dir: Path, *,
     """
     problems: list[Diagnostic] = []
     outputs: dict[str, tuple[bytes, bool]] = {}
-    copied: dict[str, str] = {}
+    # what the generation reads of the user's: listed before it reads any
+    folders = WatchedFolders.of(package)
+    listing = folders.listing()
+    read: dict[str, str] = {}
     for spec in package.files:
         outputs[spec.path] = (render(spec.template, spec.context)
                               .encode('utf-8'), spec.executable)
@@ -155,20 +163,18 @@ def generate_package(package: PackageFiles, out_dir: Path, *,
                 f"'colcon robmosys-generate --packages-select {package.name}' "
                 'to create it from the model, then fill it in'))
             continue
+        # checked with this content: a change checks it again
+        read[str(source)] = user_digest(source.read_bytes(), os.access(source, os.X_OK))
         found, shows_skeleton = check_user_file(
             user_file, source, out_dir / user_file.skeleton_path)
         problems += found
         if shows_skeleton and user_file.skeleton_path in outputs:
             skeletons.append(user_file.skeleton_path)
-        # checked with this content: a change checks it again
-        copied[str(source)] = digest(source.read_bytes())
     problems += merge_conflicts(package, outputs)
     if standalone:
-        # stamps know the files copied, not those added since: they serve
-        # the build tree, where nothing of the user's is copied
         for relative, (data, executable) in user_tree(package).items():
             outputs[relative] = (data, executable)
-            copied[str(package.model_dir / relative)] = digest(data)
+            read[str(package.model_dir / relative)] = user_digest(data, executable)
     if problems:
         # an error that points at a skeleton finds it up to date
         for relative in skeletons:
@@ -176,15 +182,20 @@ def generate_package(package: PackageFiles, out_dir: Path, *,
             write_generated(out_dir / relative, data, executable=executable)
         raise RobmosysError(problems)
     if stamps is None:
-        return _write_outputs(outputs, out_dir, sync=sync)
+        return _write_outputs(outputs, out_dir, durable=durable)
     stamps.forget(out_dir)
-    report = _write_outputs(outputs, out_dir, sync=sync)
-    stamps.record(out_dir, fingerprint, [MANIFEST, *outputs], copied)
+    report = _write_outputs(outputs, out_dir, durable=durable)
+    record = partial(stamps.record, out_dir, fingerprint, [MANIFEST, *outputs], read,
+                     folders, listing)
+    if durable is None:
+        record()
+    else:
+        durable.then(record)
     return report
 
 
 def write_tree(files: dict[str, tuple[bytes, bool]], out_dir: Path, *,
-               sync: bool = True) -> GenerationReport:
+               durable: Durable | None = None) -> GenerationReport:
     """Write files that are not rendered (a copy of a package) as generated ones.
 
     The manifest records them: writing again replaces only what is unchanged
@@ -193,22 +204,19 @@ def write_tree(files: dict[str, tuple[bytes, bool]], out_dir: Path, *,
     :param files: path relative to out_dir -> content, and whether it is
       executable
     """
-    return _write_outputs(dict(files), out_dir, sync=sync)
+    return _write_outputs(dict(files), out_dir, durable=durable)
 
 
 def unchanged_package(out_dir: Path, stamps: StampStore | None,
-                      fingerprint: str, package: PackageFiles | None = None
-                      ) -> GenerationReport | None:
+                      fingerprint: str) -> GenerationReport | None:
     """Return the report of a generation that would change nothing, if so.
 
-    :param package: the package's files: implementation files of a component
-      renamed that lie there now (see :func:`orphan_problems`) make the
-      package one to generate, which reports them. The stamps know the
-      user's files a generation read, not those added since, and a C++
-      build would compile them.
+    Nothing is planned or rendered to tell: the stamp of the last generation
+    says what it read (see :mod:`colcon_robmosys.generators.stamp`).
+
     :returns: None if the package has to be generated
     """
-    if stamps is None or (package is not None and orphan_problems(package)):
+    if stamps is None:
         return None
     files = stamps.unchanged(out_dir, fingerprint)
     if files is None:
@@ -217,7 +225,7 @@ def unchanged_package(out_dir: Path, stamps: StampStore | None,
 
 
 def _write_outputs(outputs: dict[str, tuple[bytes, bool]], out_dir: Path,
-                   *, sync: bool = False) -> GenerationReport:
+                   *, durable: Durable | None = None) -> GenerationReport:
     """Write the outputs of a generation, after checking that each is ours.
 
     The manifest is written once, before any file, and lists the new content
@@ -226,21 +234,23 @@ def _write_outputs(outputs: dict[str, tuple[bytes, bool]], out_dir: Path,
     """
     report = GenerationReport()
     manifest_path = out_dir / MANIFEST
-    previous = read_manifest(manifest_path)
-    report.removed += remove_leftovers(out_dir, previous)
+    # a package generated for the first time: no file to read, none to compare
+    fresh = not out_dir.exists()
+    previous = {} if fresh else read_manifest(manifest_path)
+    if not fresh:
+        report.removed += remove_leftovers(out_dir, previous)
     pending: Manifest = {}
     changes: list[tuple[Path, bytes, bool, bool, bytes | None]] = []
     refused: list[Diagnostic] = []
     for relative, (data, executable) in sorted(outputs.items()):
         path = out_dir / relative
-        current = read_current(path)
+        current = None if fresh else read_current(path)
         new = digest(data)
         if current == data:
             pending[relative] = {new}
             if executable and not os.access(path, os.X_OK):
-                changes.append((path, data, executable, True, current))
-            else:
-                report.unchanged.append(path)
+                make_executable(path)
+            report.unchanged.append(path)
             continue
         if current is None:
             pending[relative] = {new}
@@ -269,17 +279,17 @@ def _write_outputs(outputs: dict[str, tuple[bytes, bool]], out_dir: Path,
         pending[relative] = previous[relative]
         stale.append(path)
     if pending != previous:
-        write_manifest(manifest_path, pending, sync=sync)
+        write_manifest(manifest_path, pending, durable)
     for path, data, executable, owned, current in changes:
-        if write_generated(path, data, executable=executable, owned=owned,
-                           sync=sync, current=current):
-            report.written.append(path)
+        if durable is not None:
+            durable.replace(path, data, executable)
         else:
-            report.unchanged.append(path)  # only its mode was set
+            write_generated(path, data, executable=executable, owned=owned, current=current)
+        report.written.append(path)
     for path in stale:
-        if remove_generated(path, out_dir):
+        if durable is not None:
+            durable.remove(path, out_dir)
             report.removed.append(path)
-    if sync and (report.written or report.removed):
-        sync_folders([out_dir] + [p.parent for p in report.written] +
-                     [p.parent for p in report.removed if p.parent.is_dir()])
+        elif remove_generated(path, out_dir):
+            report.removed.append(path)
     return report

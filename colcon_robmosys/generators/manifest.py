@@ -8,6 +8,7 @@ from __future__ import annotations
 import hashlib
 from pathlib import Path
 
+from colcon_robmosys.generators.durable import Durable
 from colcon_robmosys.generators.writer import write_generated
 from colcon_robmosys.mapping.common import GENERATED_BY
 
@@ -37,12 +38,16 @@ def read_manifest(path: Path) -> Manifest:
     return files
 
 
-def write_manifest(path: Path, files: Manifest, *, sync: bool = False) -> None:
-    """Write the manifest of a generation."""
-    write_generated(path, (f'# {GENERATED_NOTE}\n' + ''.join(
+def write_manifest(path: Path, files: Manifest, durable: Durable | None = None) -> None:
+    """Write the manifest of a generation, or leave it to a durable batch of writes."""
+    data = (f'# {GENERATED_NOTE}\n' + ''.join(
         f'{value}  {relative}\n' for relative in sorted(files)
         for value in sorted(files[relative] or ())
-    )).encode('utf-8'), owned=True, sync=sync)
+    )).encode('utf-8')
+    if durable is None:
+        write_generated(path, data, owned=True)
+    else:
+        durable.manifest(path, data)
 
 
 def digest(data: bytes) -> str:

@@ -41,8 +41,8 @@ def is_generated(path: Path) -> bool:
         return False
 
 
-def _write_temp(path: Path, data: bytes, executable: bool, *,
-                sync: bool) -> Path:
+def write_temp(path: Path, data: bytes, executable: bool, *,
+               sync: bool) -> Path:
     """Write data to a new temporary file beside path; return its path.
 
     :param sync: flush the data to the disk before returning, so that a
@@ -85,7 +85,7 @@ def _mode(executable: bool) -> int:
 
 
 def write_generated(path: Path, data: bytes, *, executable: bool = False,
-                    owned: bool = False, sync: bool = False,
+                    owned: bool = False,
                     current: bytes | None | _Unread = _UNREAD) -> bool:
     """Write a generated file unless it already has this content.
 
@@ -95,13 +95,11 @@ def write_generated(path: Path, data: bytes, *, executable: bool = False,
     them visible at once. Only a power cut could then leave a file renamed
     but empty; in the build tree the next generation, which compares every
     file with the manifest, rewrites it (or, without its banner, refuses and
-    says so), so the build tree is not synced file by file.
+    says so), so the build tree is not synced. Output a user keeps is
+    written through a :class:`~colcon_robmosys.generators.durable.Durable`.
 
     :param owned: the file was written by an earlier generation even if it
       has no banner (a copy of the user's code into the build tree)
-    :param sync: fsync the new content before the rename (files a user
-      keeps, e.g. generated into their source tree); the caller syncs the
-      folders once, see :func:`sync_folders`
     :param current: the content of the file, if the caller read it already
       (None: there is no file)
     :returns: whether the file was written
@@ -111,16 +109,21 @@ def write_generated(path: Path, data: bytes, *, executable: bool = False,
         current = read_current(path)
     if current == data:
         if executable and not os.access(path, os.X_OK):
-            os.chmod(path, _mode(True))
+            make_executable(path)
         return False
     if current is not None and not owned and \
             GENERATED_MARKER not in current[:2048]:
         raise RobmosysError.in_file(
             path, 'refusing to overwrite a file that colcon-robmosys did not '
             'generate; move it away to let the generator write here')
-    temp = _write_temp(path, data, executable, sync=sync)
+    temp = write_temp(path, data, executable, sync=False)
     os.replace(temp, path)
     return True
+
+
+def make_executable(path: Path) -> None:
+    """Give a file the mode of an executable (the umask applies)."""
+    os.chmod(path, _mode(True))
 
 
 def read_current(path: Path) -> bytes | None:
@@ -138,19 +141,6 @@ def read_current(path: Path) -> bytes | None:
         ) from None
 
 
-def sync_folders(folders: Iterable[Path]) -> None:
-    """Flush the entries (renames, links) of each folder to the disk, once."""
-    for folder in sorted(set(folders)):
-        try:
-            fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
-        except OSError:
-            continue  # removed meanwhile: nothing of ours to keep there
-        try:
-            os.fsync(fd)
-        finally:
-            os.close(fd)
-
-
 def create_user_file(path: Path, data: bytes) -> bool:
     """Create a file for the user to own, only if nothing is there yet.
 
@@ -158,17 +148,9 @@ def create_user_file(path: Path, data: bytes) -> bool:
     """
     if path.exists() or path.is_symlink():
         return False
-    # what a run killed before the link below left behind
-    prefix = f'.{path.name}.'
-    try:
-        names = os.listdir(path.parent)
-    except FileNotFoundError:
-        names = []
-    for name in names:
-        if name.startswith(prefix) and name.endswith(TEMP_SUFFIX):
-            os.unlink(path.parent / name)
+    remove_user_leftovers(path)
     # the user's own file from now on: on the disk before it is linked
-    temp = _write_temp(path, data, False, sync=True)
+    temp = write_temp(path, data, False, sync=True)
     try:
         # link() refuses to replace an existing file, so a file the user
         # created meanwhile is never clobbered
@@ -178,6 +160,18 @@ def create_user_file(path: Path, data: bytes) -> bool:
     finally:
         os.unlink(temp)
     return True
+
+
+def remove_user_leftovers(path: Path) -> None:
+    """Remove what a run killed before it linked a file of the user's left behind."""
+    prefix = f'.{path.name}.'
+    try:
+        names = os.listdir(path.parent)
+    except FileNotFoundError:
+        names = []
+    for name in names:
+        if name.startswith(prefix) and name.endswith(TEMP_SUFFIX):
+            os.unlink(path.parent / name)
 
 
 def remove_generated(path: Path, root: Path) -> bool:
