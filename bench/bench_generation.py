@@ -43,8 +43,10 @@ from benchlib import print_end, print_machine, ratio, spread, table
 from colcon_robmosys.check import find_model_files, load_workspace, ModelCache
 from colcon_robmosys.check.cache import CACHE_DIR
 from colcon_robmosys.check.index import InterfaceIndex
-from colcon_robmosys.generators import create_missing_user_files, generate_package
+from colcon_robmosys.generators import create_missing_user_files, fingerprint
+from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package, StampStore, unchanged_package
+import generation_cli
 from synthetic import ros_index, write_workspace
 
 
@@ -85,17 +87,17 @@ def generate_workspace(src: Path, out: Path, index: InterfaceIndex) -> Phases:
     todo = []
     written = unchanged = 0
     for model in workspace.models:
-        fingerprint = result.fingerprint(model.package)
-        report = unchanged_package(out / model.package, stamps, fingerprint)
+        inputs = fingerprint(result, model.package, standalone=True)
+        report = unchanged_package(out / model.package, stamps, inputs)
         if report is None:
-            todo.append((plan_package(workspace, model.package), fingerprint))
+            todo.append((plan_package(workspace, model.package), inputs))
         else:
             unchanged += len(report.unchanged)
     planned = time.perf_counter()
-    for plan, fingerprint in todo:
+    for plan, inputs in todo:
         create_missing_user_files(plan)
         report = generate_package(plan, out / plan.name, stamps=stamps,
-                                  fingerprint=fingerprint)
+                                  fingerprint=inputs)
         written += len(report.written)
         unchanged += len(report.unchanged)
     done = time.perf_counter()
@@ -350,6 +352,11 @@ def main(argv: Sequence[str] | None = None) -> int:
                         f'(default: {CPP_EVERY})')
     parser.add_argument('--schema-rounds', type=int, default=5,
                         help='fresh interpreters timing the schema each way (default: 5)')
+    parser.add_argument('--cli-size', type=int, default=1000, metavar='N',
+                        help='components of the workspace that the CLI generates '
+                        '(issue 28, P1), 0 to skip (default: 1000)')
+    parser.add_argument('--cli-rounds', type=int, default=2,
+                        help='rounds of the CLI steps; the fastest counts (default: 2)')
     parser.add_argument('--tmpdir', type=Path,
                         help='where to write the workspaces (default: the system temp folder)')
     args = parser.parse_args(argv)
@@ -364,6 +371,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     results = run(sorted(args.sizes), args.repeat)
     print(report(results))
     print(schema_cost(args.schema_rounds))
+    if args.cli_size:
+        times = generation_cli.measure(args.cli_size, args.cli_rounds, CPP_EVERY)
+        print('\n'.join(generation_cli.report(args.cli_size, times)))
     print_end()
     return 0
 
