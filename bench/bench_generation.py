@@ -30,6 +30,7 @@ from __future__ import annotations
 import argparse
 import cProfile
 from dataclasses import dataclass, field
+import os
 from pathlib import Path
 import pstats
 import resource
@@ -113,6 +114,9 @@ def write_plainly(out: Path, floor: Path) -> tuple[float, float]:
     """
     files = {p.relative_to(out): p.read_bytes() for p in sorted(out.rglob('*'))
              if p.is_file() and CACHE_DIR not in p.relative_to(out).parts}
+    # the writes of the generations before, and the removals of earlier samples, are
+    # flushed first: left pending, they made this floor six times cp -r (issue 28)
+    os.sync()
     start, cpu_start = time.perf_counter(), time.process_time()
     made = set()
     for relative, data in files.items():
@@ -159,7 +163,9 @@ def measure_once(components: int, batch: int,
         roots = [Path(tmp) / str(b) for b in range(batch)]
         for root in roots:
             shape = write_workspace(root / 'src', components, cpp_every=CPP_EVERY)
+        os.sync()
         first = _sum([generate_workspace(r / 'src', r / 'out', index) for r in roots])
+        os.sync()
         again = _sum([generate_workspace(r / 'src', r / 'out', index) for r in roots])
         plain = [write_plainly(r / 'out', r / 'plain') for r in roots]
     if again.written:
