@@ -30,6 +30,7 @@ from __future__ import annotations
 import argparse
 import cProfile
 from dataclasses import dataclass, field
+import os
 from pathlib import Path
 import pstats
 import resource
@@ -43,8 +44,10 @@ from benchlib import print_end, print_machine, ratio, spread, table
 from colcon_robmosys.check import find_model_files, load_workspace, ModelCache
 from colcon_robmosys.check.cache import CACHE_DIR
 from colcon_robmosys.check.index import InterfaceIndex
-from colcon_robmosys.generators import create_missing_user_files, generate_package
+from colcon_robmosys.generators import create_missing_user_files, fingerprint
+from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package, StampStore, unchanged_package
+import generation_cli
 from synthetic import ros_index, write_workspace
 
 
@@ -85,17 +88,17 @@ def generate_workspace(src: Path, out: Path, index: InterfaceIndex) -> Phases:
     todo = []
     written = unchanged = 0
     for model in workspace.models:
-        fingerprint = result.fingerprint(model.package)
-        report = unchanged_package(out / model.package, stamps, fingerprint)
+        inputs = fingerprint(result, model.package, standalone=True)
+        report = unchanged_package(out / model.package, stamps, inputs)
         if report is None:
-            todo.append((plan_package(workspace, model.package), fingerprint))
+            todo.append((plan_package(workspace, model.package), inputs))
         else:
             unchanged += len(report.unchanged)
     planned = time.perf_counter()
-    for plan, fingerprint in todo:
+    for plan, inputs in todo:
         create_missing_user_files(plan)
         report = generate_package(plan, out / plan.name, stamps=stamps,
-                                  fingerprint=fingerprint)
+                                  fingerprint=inputs)
         written += len(report.written)
         unchanged += len(report.unchanged)
     done = time.perf_counter()
@@ -111,6 +114,9 @@ def write_plainly(out: Path, floor: Path) -> tuple[float, float]:
     """
     files = {p.relative_to(out): p.read_bytes() for p in sorted(out.rglob('*'))
              if p.is_file() and CACHE_DIR not in p.relative_to(out).parts}
+    # the writes of the generations before, and the removals of earlier samples, are
+    # flushed first: left pending, they made this floor six times cp -r (issue 28)
+    os.sync()
     start, cpu_start = time.perf_counter(), time.process_time()
     made = set()
     for relative, data in files.items():
@@ -157,7 +163,9 @@ def measure_once(components: int, batch: int,
         roots = [Path(tmp) / str(b) for b in range(batch)]
         for root in roots:
             shape = write_workspace(root / 'src', components, cpp_every=CPP_EVERY)
+        os.sync()
         first = _sum([generate_workspace(r / 'src', r / 'out', index) for r in roots])
+        os.sync()
         again = _sum([generate_workspace(r / 'src', r / 'out', index) for r in roots])
         plain = [write_plainly(r / 'out', r / 'plain') for r in roots]
     if again.written:
@@ -350,6 +358,11 @@ def main(argv: Sequence[str] | None = None) -> int:
                         f'(default: {CPP_EVERY})')
     parser.add_argument('--schema-rounds', type=int, default=5,
                         help='fresh interpreters timing the schema each way (default: 5)')
+    parser.add_argument('--cli-size', type=int, default=1000, metavar='N',
+                        help='components of the workspace that the CLI generates '
+                        '(issue 28, P1), 0 to skip (default: 1000)')
+    parser.add_argument('--cli-rounds', type=int, default=2,
+                        help='rounds of the CLI steps; the fastest counts (default: 2)')
     parser.add_argument('--tmpdir', type=Path,
                         help='where to write the workspaces (default: the system temp folder)')
     args = parser.parse_args(argv)
@@ -364,6 +377,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     results = run(sorted(args.sizes), args.repeat)
     print(report(results))
     print(schema_cost(args.schema_rounds))
+    if args.cli_size:
+        times = generation_cli.measure(args.cli_size, args.cli_rounds, CPP_EVERY)
+        print('\n'.join(generation_cli.report(args.cli_size, times)))
     print_end()
     return 0
 

@@ -21,6 +21,8 @@ import subprocess
 import sys
 import time
 
+import pytest
+
 from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.generators import generate_package, MANIFEST, read_manifest
@@ -40,10 +42,12 @@ import sys
 from pathlib import Path
 from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
-from colcon_robmosys.generators import generate_package
+from colcon_robmosys.generators import Durable, generate_package
 from colcon_robmosys.generators import plan_package
 
 src, out = Path(sys.argv[1]), Path(sys.argv[2])
+# the writes of output a user keeps wait for one commit, as the verb's do
+durable = Durable() if os.environ.get('ROBMOSYS_TEST_DURABLE') else None
 result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
 result.raise_errors()
 plans = [plan_package(result.workspace, m.package) for m in result.workspace.generated_models]
@@ -59,7 +63,9 @@ def hook(event, args):
 sys.addaudithook(hook)
 print('go', flush=True)
 for plan in plans:
-    generate_package(plan, out / plan.name)
+    generate_package(plan, out / plan.name, durable=durable)
+if durable is not None:
+    durable.commit()
 print('events', len(events), flush=True)
 """
 
@@ -78,7 +84,7 @@ def _version(src: Path, text: str) -> None:
 
 
 def _generate(src: Path, out: Path, *, kill_after: float | None = None,
-              kill_at: int | None = None) -> tuple[float, str]:
+              kill_at: int | None = None, durable: bool = False) -> tuple[float, str]:
     """Run the child; kill it kill_after seconds after 'go' or at its kill_at-th file operation.
 
     :returns: how long the child ran after 'go', and what it printed then
@@ -86,7 +92,8 @@ def _generate(src: Path, out: Path, *, kill_after: float | None = None,
     command = [sys.executable, '-c', CHILD, str(src), str(out)]
     if kill_at is not None:
         command.append(str(kill_at))
-    child = subprocess.Popen(command, stdout=subprocess.PIPE, text=True)
+    env = dict(os.environ, ROBMOSYS_TEST_DURABLE='1' if durable else '')
+    child = subprocess.Popen(command, stdout=subprocess.PIPE, text=True, env=env)
     try:
         assert child.stdout is not None
         assert child.stdout.readline() == 'go\n'
@@ -142,7 +149,8 @@ def _check_manifest(path: Path) -> None:
             assert digests and hashlib.sha256(file.read_bytes()).hexdigest() in digests
 
 
-def test_killed_generation_leaves_whole_files(tmp_path):
+@pytest.mark.parametrize('durable', [False, True], ids=['build-tree', 'durable'])
+def test_killed_generation_leaves_whole_files(tmp_path, durable):
     src = tmp_path / 'src'
     shutil.copytree(TEST_WORKSPACE / 'src', src, ignore=shutil.ignore_patterns('__pycache__'))
     users = _files(src)
@@ -151,7 +159,7 @@ def test_killed_generation_leaves_whole_files(tmp_path):
     old = _files(tmp_path / 'old')
     _version(src, 'New words, longer.')
     shutil.copytree(tmp_path / 'old', tmp_path / 'new')
-    duration, printed = _generate(src, tmp_path / 'new', kill_at=10 ** 9)
+    duration, printed = _generate(src, tmp_path / 'new', kill_at=10 ** 9, durable=durable)
     events = int(printed.split()[1])
     new = _outputs(tmp_path / 'new')
     assert old.keys() == new.keys()
@@ -166,10 +174,13 @@ def test_killed_generation_leaves_whole_files(tmp_path):
         shutil.copytree(tmp_path / 'old', out)
         if iteration % 2:
             # spread the kills over the whole run, and a little beyond
-            _generate(src, out, kill_after=rng.uniform(0, duration * 1.2))
+            _generate(src, out, kill_after=rng.uniform(0, duration * 1.2), durable=durable)
         else:
             # or at one of its file operations
-            _generate(src, out, kill_at=rng.randint(1, events))
+            # durable: every file changed is written to a temporary file first, then
+            # each renamed: its last operations, where a kill leaves a mix
+            first = events - len(changed) + 2 if durable else 1
+            _generate(src, out, kill_at=rng.randint(first, events), durable=durable)
         seen = set()
         for path in sorted(out.rglob('*')):
             if not path.is_file():

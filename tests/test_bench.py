@@ -65,7 +65,7 @@ def test_handwritten_copy_has_the_generated_packages(tmp_path):
 
 
 def test_generation_benchmark_prints_ratios(capsys):
-    assert bench_generation.main(['--sizes', '2', '4', '--repeat', '1']) == 0
+    assert bench_generation.main(['--sizes', '2', '4', '--repeat', '1', '--cli-size', '0']) == 0
     out = capsys.readouterr().out
     assert 'nproc' in out and 'load average at end' in out
     rows = [[cell.strip() for cell in line.split('|')[1:-1]]
@@ -77,6 +77,20 @@ def test_generation_benchmark_prints_ratios(capsys):
     # the first generation against writing its files plainly, in the same run
     assert re.search(rf'plainly .* the generation takes {RATIO} the wall time, {RATIO} the CPU',
                      out)
+
+
+@requires_ros
+@pytest.mark.integration
+def test_generation_through_the_cli_prints_its_goals():
+    times = bench_generation.generation_cli.measure(3, 1, cpp_every=2)
+    # the first run made the files, the copies hold them all
+    assert times.files > 30 and len(times.first) == len(times.copy) == 1
+    out = '\n'.join(bench_generation.generation_cli.report(3, times))
+    # issue 28, P1: through the CLI, each goal met or not
+    assert re.search(r'goal P1 no change: .* = [0-9.]+x \(goal <= 1.5x\): (met|NOT met)$', out,
+                     re.MULTILINE)
+    assert re.search(r'goal P1 first: .* = [0-9.]+x \(goal <= 1.5x\): (met|NOT met)$', out,
+                     re.MULTILINE)
 
 
 @requires_ros

@@ -20,7 +20,7 @@ from colcon_robmosys.check import find_model_files, load_workspace, ModelCache
 from colcon_robmosys.check.cache import CACHE_DIR
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.generators import (
-    create_missing_user_files, generate_package, MANIFEST, plan_package,
+    create_missing_user_files, fingerprint, generate_package, MANIFEST, plan_package,
     read_manifest, StampStore, unchanged_package)
 from colcon_robmosys.model import schema
 from conftest import TEST_WORKSPACE
@@ -159,14 +159,14 @@ def _generate_all(src: Path, out: Path, index: InterfaceIndex) -> dict[str, int]
     for model in result.workspace.generated_models:
         if model.package in result.broken_files or result.errors_of(model.info.model_file):
             continue
-        fingerprint = result.fingerprint(model.package)
+        inputs = fingerprint(result, model.package, standalone=True)
         target = out / model.package
-        if unchanged_package(target, stamps, fingerprint) is not None:
+        if unchanged_package(target, stamps, inputs) is not None:
             counts['skipped'] += 1
             continue
         plan = plan_package(result.workspace, model.package)
         create_missing_user_files(plan)
-        report = generate_package(plan, target, stamps=stamps, fingerprint=fingerprint)
+        report = generate_package(plan, target, stamps=stamps, fingerprint=inputs)
         counts['generated'] += 1
         counts['written'] += len(report.written)
     return counts

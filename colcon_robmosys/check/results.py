@@ -6,10 +6,8 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-import hashlib
 
 from colcon_robmosys.errors import Diagnostic, RobmosysError
-from colcon_robmosys.model.files import model_dependencies
 from colcon_robmosys.model.types import ModelFile, Workspace
 
 
@@ -58,30 +56,6 @@ class LoadResult:
     def warnings_of(self, package: str) -> list[Diagnostic]:
         """Return the warnings about the model of one package."""
         return self.package_warnings.get(package, [])
-
-    def fingerprint(self, package: str) -> str:
-        """Return a digest of what the generation of a package reads.
-
-        The model files of the package and of every package it depends on,
-        by content (their keys also digest the code of colcon-robmosys):
-        the same fingerprint, the same generated files.
-        """
-        files: set[str] = set()
-        seen: set[str] = set()
-        todo = [package]
-        while todo:
-            name = todo.pop()
-            model = self.workspace.model(name)
-            if name in seen or model is None:
-                continue
-            seen.add(name)
-            files.add(model.info.model_file)
-            todo.extend(model_dependencies(model))
-        digest = hashlib.sha256(package.encode() + b'\0')
-        for path in sorted(files):
-            digest.update(f'{path}\0{self.file_keys.get(path)}\0'.encode(
-                'utf-8', 'surrogateescape'))
-        return digest.hexdigest()
 
     def raise_errors(self) -> None:
         """Raise every error at once, if there is any."""

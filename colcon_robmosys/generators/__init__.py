@@ -12,21 +12,24 @@ everything goes through one renderer and one writer.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import partial
+import os
 from pathlib import Path
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
 from colcon_robmosys.generators.component import component_package
+from colcon_robmosys.generators.durable import Durable
 from colcon_robmosys.generators.files import FileSpec, PackageFiles, UserFile
 from colcon_robmosys.generators.interfaces import interfaces_package
-from colcon_robmosys.generators.manifest import digest, MANIFEST, read_manifest
+from colcon_robmosys.generators.manifest import MANIFEST, read_manifest
 from colcon_robmosys.generators.render import render
-from colcon_robmosys.generators.stamp import StampStore
+from colcon_robmosys.generators.stamp import (
+    fingerprint, StampStore, user_digest, WatchedFolders)
 from colcon_robmosys.generators.system import system_package
 from colcon_robmosys.generators.usercode import (
     check_user_file, merge_conflicts, orphan_problems, user_tree)
 from colcon_robmosys.generators.writer import (
-    create_user_file, GenerationReport, sync_folders, write_generated, write_outputs,
-    write_tree)
+    GenerationReport, write_generated, write_outputs, write_tree)
 from colcon_robmosys.mapping.backends import backend
 from colcon_robmosys.mapping.common import INSTALLED_MODEL
 from colcon_robmosys.mapping.component import plan_component
@@ -35,10 +38,10 @@ from colcon_robmosys.mapping.system import plan_system
 from colcon_robmosys.mapping.userfiles import user_folders
 from colcon_robmosys.model.types import Component, ServiceDefinition, Workspace
 
-__all__ = ['create_missing_user_files', 'FileSpec', 'generate_package',
-           'GenerationReport', 'MANIFEST', 'PackageFiles', 'plan_package',
-           'read_manifest', 'StampStore', 'unchanged_package', 'UserFile',
-           'write_tree']
+__all__ = ['create_missing_user_files', 'Durable', 'FileSpec', 'fingerprint',
+           'generate_package', 'GenerationReport', 'MANIFEST', 'PackageFiles',
+           'plan_package', 'read_manifest', 'StampStore', 'unchanged_package',
+           'UserFile', 'write_tree']
 
 
 def plan_package(workspace: Workspace, package: str) -> PackageFiles:
@@ -74,11 +77,16 @@ class InstalledModel:
     text: str
 
 
-def create_missing_user_files(package: PackageFiles) -> list[Path]:
+def create_missing_user_files(package: PackageFiles,
+                              durable: Durable | None = None) -> list[Path]:
     """Create the implementation files the user lacks, from the model.
 
     Existing files are never touched.
 
+    :param durable: where to leave the files to create, for the caller to
+      commit with others (the files are then not created yet, and the list
+      returned is empty: the commit returns them); without, they are created
+      and made durable before this returns
     :raises RobmosysError: if implementation files of a component the model
       no longer has lie there: a fresh file beside them would leave the
       user's code behind, unnoticed
@@ -86,21 +94,17 @@ def create_missing_user_files(package: PackageFiles) -> list[Path]:
     orphans = orphan_problems(package)
     if orphans:
         raise RobmosysError(orphans)
-    created = []
+    batch = Durable() if durable is None else durable
     for user_file in package.user_files:
         path = package.model_dir / user_file.source_path
         if path.exists() or path.is_symlink():
             continue  # the user's: rendering it would be for nothing
-        text = render(user_file.template, user_file.context)
-        if create_user_file(path, text.encode('utf-8')):
-            created.append(path)
-    # each file was synced before it was linked; now its folder's entry
-    sync_folders(p.parent for p in created)
-    return created
+        batch.create(path, render(user_file.template, user_file.context).encode('utf-8'))
+    return batch.commit() if durable is None else []
 
 
 def generate_package(package: PackageFiles, out_dir: Path, *,
-                     sync: bool = False, stamps: StampStore | None = None,
+                     durable: Durable | None = None, stamps: StampStore | None = None,
                      fingerprint: str = '',
                      standalone: bool = True) -> GenerationReport:
     """Write the files of a package into out_dir.
@@ -113,8 +117,9 @@ def generate_package(package: PackageFiles, out_dir: Path, *,
       build uses them where they are (``ROBMOSYS_SOURCE_DIR``, set by the
       build task)
 
-    :param sync: make every file written durable (fsync, then each folder
-      once): for output a user keeps, not for the build tree
+    :param durable: leave the writes to it, to be made durable with the
+      others of the run when the caller commits it: for output a user keeps,
+      not for the build tree (the report tells what the commit writes)
     :param stamps: where to record the generation, under the fingerprint
       of its inputs (see :func:`unchanged_package`)
 
@@ -123,7 +128,10 @@ def generate_package(package: PackageFiles, out_dir: Path, *,
     """
     problems: list[Diagnostic] = []
     outputs: dict[str, tuple[bytes, bool]] = {}
-    copied: dict[str, str] = {}
+    # what the generation reads of the user's: listed before it reads any
+    folders = WatchedFolders.of(package)
+    listing = folders.listing()
+    read: dict[str, str] = {}
     for spec in package.files:
         outputs[spec.path] = (render(spec.template, spec.context)
                               .encode('utf-8'), spec.executable)
@@ -142,20 +150,18 @@ def generate_package(package: PackageFiles, out_dir: Path, *,
                 f"'colcon robmosys-generate --packages-select {package.name}' "
                 'to create it from the model, then fill it in'))
             continue
+        # checked with this content: a change checks it again
+        read[str(source)] = user_digest(source.read_bytes(), os.access(source, os.X_OK))
         found, shows_skeleton = check_user_file(
             user_file, source, out_dir / user_file.skeleton_path)
         problems += found
         if shows_skeleton and user_file.skeleton_path in outputs:
             skeletons.append(user_file.skeleton_path)
-        # checked with this content: a change checks it again
-        copied[str(source)] = digest(source.read_bytes())
     problems += merge_conflicts(package, outputs)
     if standalone:
-        # stamps know the files copied, not those added since: they serve
-        # the build tree, where nothing of the user's is copied
         for relative, (data, executable) in user_tree(package).items():
             outputs[relative] = (data, executable)
-            copied[str(package.model_dir / relative)] = digest(data)
+            read[str(package.model_dir / relative)] = user_digest(data, executable)
     if problems:
         # an error that points at a skeleton finds it up to date
         for relative in skeletons:
@@ -163,26 +169,28 @@ def generate_package(package: PackageFiles, out_dir: Path, *,
             write_generated(out_dir / relative, data, executable=executable)
         raise RobmosysError(problems)
     if stamps is None:
-        return write_outputs(outputs, out_dir, sync=sync)
+        return write_outputs(outputs, out_dir, durable=durable)
     stamps.forget(out_dir)
-    report = write_outputs(outputs, out_dir, sync=sync)
-    stamps.record(out_dir, fingerprint, [MANIFEST, *outputs], copied)
+    report = write_outputs(outputs, out_dir, durable=durable)
+    record = partial(stamps.record, out_dir, fingerprint, [MANIFEST, *outputs], read,
+                     folders, listing)
+    if durable is None:
+        record()
+    else:
+        durable.then(record)
     return report
 
 
 def unchanged_package(out_dir: Path, stamps: StampStore | None,
-                      fingerprint: str, package: PackageFiles | None = None
-                      ) -> GenerationReport | None:
+                      fingerprint: str) -> GenerationReport | None:
     """Return the report of a generation that would change nothing, if so.
 
-    :param package: the package's files: implementation files of a component
-      renamed that lie there now (see :func:`orphan_problems`) make the
-      package one to generate, which reports them. The stamps know the
-      user's files a generation read, not those added since, and a C++
-      build would compile them.
+    Nothing is planned or rendered to tell: the stamp of the last generation
+    says what it read (see :mod:`colcon_robmosys.generators.stamp`).
+
     :returns: None if the package has to be generated
     """
-    if stamps is None or (package is not None and orphan_problems(package)):
+    if stamps is None:
         return None
     files = stamps.unchanged(out_dir, fingerprint)
     if files is None:

@@ -5,9 +5,11 @@
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from dataclasses import fields, is_dataclass
 from functools import lru_cache
 from pathlib import Path
+import threading
 from typing import Any
 
 import jinja2
@@ -46,15 +48,36 @@ def environment() -> jinja2.Environment:
     return env
 
 
+#: The variables of the contexts rendered last: id -> (context, variables).
+#: The context is kept with them, so that its id names no other object meanwhile.
+_recent: OrderedDict[int, tuple[Any, dict[str, Any]]] = OrderedDict()
+
+#: How many contexts :data:`_recent` keeps: more than the contexts of one package.
+_RECENT = 8
+_recent_lock = threading.Lock()
+
+
 def variables(context: Any) -> dict[str, Any]:
     """Return the variables of a template: the fields and properties of a context.
 
     Contexts are frozen dataclasses of the mapping; a template reads their
-    attributes as top-level names.
+    attributes as top-level names. The files of a package share a context:
+    its properties (a system's bringup.json, say) are computed once for all
+    of them, not once per file (which was half of the rendering).
     """
+    with _recent_lock:
+        kept = _recent.get(id(context))
+        if kept is not None and kept[0] is context:
+            _recent.move_to_end(id(context))
+            return kept[1]
     if not is_dataclass(context) or isinstance(context, type):
         raise TypeError(f'a template context is a dataclass, not {context!r}')
-    return {name: getattr(context, name) for name in _names(type(context))}
+    found = {name: getattr(context, name) for name in _names(type(context))}
+    with _recent_lock:
+        _recent[id(context)] = (context, found)
+        if len(_recent) > _RECENT:
+            _recent.popitem(last=False)
+    return found
 
 
 @lru_cache(maxsize=None)

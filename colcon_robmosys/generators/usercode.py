@@ -57,7 +57,7 @@ def user_file_problems(user_file: UserFile, path: Path,
     return check_user_file(user_file, path, skeleton)[0]
 
 
-def _user_files_below(folder: Path) -> Iterator[Path]:
+def user_files_below(folder: Path) -> Iterator[Path]:
     """Yield the user's files below a folder, sorted; none if it is missing.
 
     Hidden files and what tools leave (``__pycache__``, ``*.pyc``) are not
@@ -81,7 +81,7 @@ def user_tree(package: PackageFiles) -> dict[str, tuple[bytes, bool]]:
     """
     found = {}
     for folder in package.user_folders:
-        for path in _user_files_below(package.model_dir / folder):
+        for path in user_files_below(package.model_dir / folder):
             relative = path.relative_to(package.model_dir).as_posix()
             found[relative] = (path.read_bytes(), os.access(path, os.X_OK))
     return found
@@ -96,7 +96,7 @@ def merge_conflicts(package: PackageFiles,
     """
     problems = []
     for folder, generated in package.merged_folders.items():
-        for path in _user_files_below(package.model_dir / folder):
+        for path in user_files_below(package.model_dir / folder):
             relative = path.relative_to(package.model_dir / folder).as_posix()
             if f'{generated}/{relative}' in outputs:
                 problems.append(Diagnostic(
@@ -109,6 +109,24 @@ def merge_conflicts(package: PackageFiles,
 #: The name of an implementation file, without its suffix: the class of a
 #: component, then ``_impl``.
 _IMPL_NAME = re.compile(r'(?P<cls>[A-Za-z_][A-Za-z0-9_]*)_impl')
+
+
+def implementation_files(folder: Path, suffixes: Iterable[str]) -> list[tuple[str, str]]:
+    """Return the implementation files in a folder, of any component: (class, name).
+
+    ``<class>_impl`` with one of the suffixes; none if the folder is missing.
+    """
+    try:
+        names = sorted(os.listdir(folder))
+    except OSError:
+        return []
+    found = []
+    for name in names:
+        stem, suffix = os.path.splitext(name)
+        match = _IMPL_NAME.fullmatch(stem)
+        if suffix in suffixes and match:
+            found.append((match['cls'], name))
+    return found
 
 
 def orphan_problems(package: PackageFiles) -> list[Diagnostic]:
@@ -135,16 +153,10 @@ def orphan_problems(package: PackageFiles) -> list[Diagnostic]:
     if impl is None:
         return []
     folder = package.model_dir / impl.folder
-    try:
-        names = sorted(os.listdir(folder))
-    except OSError:
-        return []
     groups: dict[str, list[Path]] = {}
-    for name in names:
-        stem, suffix = os.path.splitext(name)
-        match = _IMPL_NAME.fullmatch(stem)
-        if suffix in impl.suffixes and match and match['cls'] != impl.component:
-            groups.setdefault(match['cls'], []).append(folder / name)
+    for cls, name in implementation_files(folder, impl.suffixes):
+        if cls != impl.component:
+            groups.setdefault(cls, []).append(folder / name)
     orphans = {cls: sorted(paths, key=lambda p: impl.suffixes.index(p.suffix))
                for cls, paths in sorted(groups.items())
                if impl.implements(cls, {path: _text(path) for path in paths})}

@@ -13,12 +13,15 @@ from dataclasses import dataclass, field
 import itertools
 import os
 from pathlib import Path
-from typing import Iterable
+from typing import Iterable, TYPE_CHECKING
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
 from colcon_robmosys.generators.manifest import (
     digest, MANIFEST, Manifest, manifest_bytes, read_manifest, unchanged_since)
 from colcon_robmosys.mapping.common import GENERATED_BY
+
+if TYPE_CHECKING:  # the durable batch writes through this module
+    from colcon_robmosys.generators.durable import Durable
 
 #: Every generated file carries this text in its banner.
 GENERATED_MARKER = GENERATED_BY.encode('utf-8')
@@ -48,8 +51,8 @@ def is_generated(path: Path) -> bool:
         return False
 
 
-def _write_temp(path: Path, data: bytes, executable: bool, *,
-                sync: bool) -> Path:
+def write_temp(path: Path, data: bytes, executable: bool, *,
+               sync: bool) -> Path:
     """Write data to a new temporary file beside path; return its path.
 
     :param sync: flush the data to the disk before returning, so that a
@@ -92,7 +95,7 @@ def _mode(executable: bool) -> int:
 
 
 def write_generated(path: Path, data: bytes, *, executable: bool = False,
-                    owned: bool = False, sync: bool = False,
+                    owned: bool = False,
                     current: bytes | None | _Unread = _UNREAD) -> bool:
     """Write a generated file unless it already has this content.
 
@@ -102,13 +105,11 @@ def write_generated(path: Path, data: bytes, *, executable: bool = False,
     them visible at once. Only a power cut could then leave a file renamed
     but empty; in the build tree the next generation, which compares every
     file with the manifest, rewrites it (or, without its banner, refuses and
-    says so), so the build tree is not synced file by file.
+    says so), so the build tree is not synced. Output a user keeps is
+    written through a :class:`~colcon_robmosys.generators.durable.Durable`.
 
     :param owned: the file was written by an earlier generation even if it
       has no banner (a copy of the user's code into the build tree)
-    :param sync: fsync the new content before the rename (files a user
-      keeps, e.g. generated into their source tree); the caller syncs the
-      folders once, see :func:`sync_folders`
     :param current: the content of the file, if the caller read it already
       (None: there is no file)
     :returns: whether the file was written
@@ -118,16 +119,21 @@ def write_generated(path: Path, data: bytes, *, executable: bool = False,
         current = read_current(path)
     if current == data:
         if executable and not os.access(path, os.X_OK):
-            os.chmod(path, _mode(True))
+            make_executable(path)
         return False
     if current is not None and not owned and \
             GENERATED_MARKER not in current[:2048]:
         raise RobmosysError.in_file(
             path, 'refusing to overwrite a file that colcon-robmosys did not '
             'generate; move it away to let the generator write here')
-    temp = _write_temp(path, data, executable, sync=sync)
+    temp = write_temp(path, data, executable, sync=False)
     os.replace(temp, path)
     return True
+
+
+def make_executable(path: Path) -> None:
+    """Give a file the mode of an executable (the umask applies)."""
+    os.chmod(path, _mode(True))
 
 
 def read_current(path: Path) -> bytes | None:
@@ -145,19 +151,6 @@ def read_current(path: Path) -> bytes | None:
         ) from None
 
 
-def sync_folders(folders: Iterable[Path]) -> None:
-    """Flush the entries (renames, links) of each folder to the disk, once."""
-    for folder in sorted(set(folders)):
-        try:
-            fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
-        except OSError:
-            continue  # removed meanwhile: nothing of ours to keep there
-        try:
-            os.fsync(fd)
-        finally:
-            os.close(fd)
-
-
 def create_user_file(path: Path, data: bytes) -> bool:
     """Create a file for the user to own, only if nothing is there yet.
 
@@ -165,17 +158,9 @@ def create_user_file(path: Path, data: bytes) -> bool:
     """
     if path.exists() or path.is_symlink():
         return False
-    # what a run killed before the link below left behind
-    prefix = f'.{path.name}.'
-    try:
-        names = os.listdir(path.parent)
-    except FileNotFoundError:
-        names = []
-    for name in names:
-        if name.startswith(prefix) and name.endswith(TEMP_SUFFIX):
-            os.unlink(path.parent / name)
+    remove_user_leftovers(path)
     # the user's own file from now on: on the disk before it is linked
-    temp = _write_temp(path, data, False, sync=True)
+    temp = write_temp(path, data, False, sync=True)
     try:
         # link() refuses to replace an existing file, so a file the user
         # created meanwhile is never clobbered
@@ -185,6 +170,18 @@ def create_user_file(path: Path, data: bytes) -> bool:
     finally:
         os.unlink(temp)
     return True
+
+
+def remove_user_leftovers(path: Path) -> None:
+    """Remove what a run killed before it linked a file of the user's left behind."""
+    prefix = f'.{path.name}.'
+    try:
+        names = os.listdir(path.parent)
+    except FileNotFoundError:
+        names = []
+    for name in names:
+        if name.startswith(prefix) and name.endswith(TEMP_SUFFIX):
+            os.unlink(path.parent / name)
 
 
 def remove_generated(path: Path, root: Path) -> bool:
@@ -244,7 +241,7 @@ class GenerationReport:
 
 
 def write_tree(files: dict[str, tuple[bytes, bool]], out_dir: Path, *,
-               sync: bool = True) -> GenerationReport:
+               durable: Durable | None = None) -> GenerationReport:
     """Write files that are not rendered (a copy of a package) as generated ones.
 
     The manifest records them: writing again replaces only what is unchanged
@@ -253,34 +250,40 @@ def write_tree(files: dict[str, tuple[bytes, bool]], out_dir: Path, *,
     :param files: path relative to out_dir -> content, and whether it is
       executable
     """
-    return write_outputs(dict(files), out_dir, sync=sync)
+    return write_outputs(dict(files), out_dir, durable=durable)
 
 
 def write_outputs(outputs: dict[str, tuple[bytes, bool]], out_dir: Path,
-                  *, sync: bool = False) -> GenerationReport:
+                  *, durable: Durable | None = None) -> GenerationReport:
     """Write the outputs of a generation, after checking that each is ours.
 
     The manifest is written once, before any file, and lists the new content
     of each file and what is there now: a run killed half-way leaves every
     file it wrote, or had not yet replaced, known as generated.
+
+    :param durable: leave the writes to it, to be made durable with the
+      others of the run when the caller commits it (the report tells what
+      the commit writes)
     """
     report = GenerationReport()
     manifest_path = out_dir / MANIFEST
-    previous = read_manifest(manifest_path)
-    report.removed += remove_leftovers(out_dir, previous)
+    # a package generated for the first time: no file to read, none to compare
+    fresh = not out_dir.exists()
+    previous = {} if fresh else read_manifest(manifest_path)
+    if not fresh:
+        report.removed += remove_leftovers(out_dir, previous)
     pending: Manifest = {}
     changes: list[tuple[Path, bytes, bool, bool, bytes | None]] = []
     refused: list[Diagnostic] = []
     for relative, (data, executable) in sorted(outputs.items()):
         path = out_dir / relative
-        current = read_current(path)
+        current = None if fresh else read_current(path)
         new = digest(data)
         if current == data:
             pending[relative] = {new}
             if executable and not os.access(path, os.X_OK):
-                changes.append((path, data, executable, True, current))
-            else:
-                report.unchanged.append(path)
+                make_executable(path)
+            report.unchanged.append(path)
             continue
         if current is None:
             pending[relative] = {new}
@@ -309,17 +312,20 @@ def write_outputs(outputs: dict[str, tuple[bytes, bool]], out_dir: Path,
         pending[relative] = previous[relative]
         stale.append(path)
     if pending != previous:
-        write_generated(manifest_path, manifest_bytes(pending), owned=True, sync=sync)
-    for path, data, executable, owned, current in changes:
-        if write_generated(path, data, executable=executable, owned=owned,
-                           sync=sync, current=current):
-            report.written.append(path)
+        if durable is None:
+            write_generated(manifest_path, manifest_bytes(pending), owned=True)
         else:
-            report.unchanged.append(path)  # only its mode was set
+            durable.manifest(manifest_path, manifest_bytes(pending))
+    for path, data, executable, owned, current in changes:
+        if durable is not None:
+            durable.replace(path, data, executable)
+        else:
+            write_generated(path, data, executable=executable, owned=owned, current=current)
+        report.written.append(path)
     for path in stale:
-        if remove_generated(path, out_dir):
+        if durable is not None:
+            durable.remove(path, out_dir)
             report.removed.append(path)
-    if sync and (report.written or report.removed):
-        sync_folders([out_dir] + [p.parent for p in report.written] +
-                     [p.parent for p in report.removed if p.parent.is_dir()])
+        elif remove_generated(path, out_dir):
+            report.removed.append(path)
     return report

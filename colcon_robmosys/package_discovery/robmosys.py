@@ -242,13 +242,17 @@ def checked_descriptors(result, model_files, shared):
 def model_cache(args):
     """Return the cache of checked model files in the build base, if any.
 
-    ``colcon build`` (and ``colcon test``) keep it up to date; ``colcon list``,
-    ``colcon graph`` and the others only read it, if there is one in
+    ``colcon build`` (and ``colcon test``) and ``colcon robmosys-generate``
+    keep it up to date; ``colcon list``, ``colcon graph``, the others and
+    ``robmosys-generate --validate-only`` only read it, if there is one in
     ``build/``: they write nothing.
     """
     build_base = getattr(args, 'build_base', None)
-    writable = build_base is not None and \
-        getattr(args, 'verb_name', None) in ('build', 'test')
+    verb = getattr(args, 'verb_name', None)
+    writable = build_base is not None and (
+        verb in ('build', 'test') or verb == 'robmosys-generate' and not (
+            getattr(args, 'validate_only', False) or
+            getattr(args, 'print_schema_path', False)))
     folder = Path(build_base or 'build') / CACHE_DIR
     if not writable and not folder.is_dir():
         return None

@@ -14,6 +14,7 @@ from colcon_ros.task.ament_cmake.build import AmentCmakeBuildTask
 from colcon_robmosys.check.cache import CACHE_DIR
 from colcon_robmosys.errors import print_diagnostics
 from colcon_robmosys.errors import RobmosysError
+from colcon_robmosys.generators import fingerprint
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
 from colcon_robmosys.generators import StampStore
@@ -94,12 +95,12 @@ class RobmosysBuildTask(TaskExtensionPoint):
         # args.build_base is build/<package>: the stamps are kept beside the
         # cache of the checked models, in build/
         stamps = StampStore(Path(args.build_base).parent / CACHE_DIR / 'stamps')
-        fingerprint = result.fingerprint(pkg.name)
+        inputs = fingerprint(result, pkg.name, standalone=False)
         try:
-            plan = plan_package(result.workspace, pkg.name)
-            report = unchanged_package(source_dir, stamps, fingerprint, plan) or \
-                generate_package(plan, source_dir, stamps=stamps,
-                                 fingerprint=fingerprint, standalone=False)
+            # an unchanged package is not even planned
+            report = unchanged_package(source_dir, stamps, inputs) or \
+                generate_package(plan_package(result.workspace, pkg.name), source_dir,
+                                 stamps=stamps, fingerprint=inputs, standalone=False)
         except RobmosysError as error:
             print_diagnostics(error.diagnostics)
             return 1
@@ -113,11 +114,11 @@ class RobmosysBuildTask(TaskExtensionPoint):
         # files are built and installed where they live, next to the model,
         # so that compilers, debuggers, linters and symlinks point there
         args.path = str(source_dir)
-        if plan.kind == 'component':
+        if pkg.type == 'robmosys.component':
             # only components have files of the user's: CMake warns of a variable
             # that a package does not use
             args.cmake_args = list(getattr(args, 'cmake_args', None) or []) + [
-                f'-DROBMOSYS_SOURCE_DIR={os.path.abspath(plan.model_dir)}']
+                f'-DROBMOSYS_SOURCE_DIR={os.path.abspath(Path(model_file).parent)}']
         extension = AmentCmakeBuildTask()
         extension.set_context(context=self.context)
         return await extension.build()

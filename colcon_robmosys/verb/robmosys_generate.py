@@ -11,11 +11,16 @@ from colcon_core.package_selection import get_packages
 from colcon_core.plugin_system import satisfies_version
 from colcon_core.verb import VerbExtensionPoint
 
+from colcon_robmosys.check.cache import CACHE_DIR
 from colcon_robmosys.errors import print_diagnostics
 from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.generators import create_missing_user_files
+from colcon_robmosys.generators import Durable
+from colcon_robmosys.generators import fingerprint
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
+from colcon_robmosys.generators import StampStore
+from colcon_robmosys.generators import unchanged_package
 from colcon_robmosys.generators import write_tree
 from colcon_robmosys.mapping.common import RUNTIME_PACKAGE
 from colcon_robmosys.mapping.distributions import distribution_problem
@@ -61,6 +66,11 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
             help='Print the path of the JSON Schema of robmosys.yaml files '
             'installed with colcon-robmosys (for the settings of an editor) '
             'and exit')
+        parser.add_argument(
+            '--build-base', default='build',
+            help='The base path of the build tree, where the checked models are '
+            'cached and what each generation read is recorded, as colcon build '
+            'keeps them (default: build)')
         add_diagnostics_arguments(parser)
         add_packages_arguments(parser)
 
@@ -136,27 +146,49 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
                 # created once: touching it would change its mtime on
                 # every run, and a run with no change changes nothing
                 marker.touch()
-        status = 0
-        uses_runtime = False
+        status, uses_runtime = 0, False
+        # the cache of the checked models holds the stamps of the packages
+        # generated (as a build's): a package whose inputs have not changed
+        # since is neither planned nor rendered again
+        stamps = StampStore(Path(args.build_base) / CACHE_DIR / 'stamps')
+        created, generating = Durable(), Durable()
+        todo = []
         for descriptor in selected:
+            out = None if out_base is None else out_base / descriptor.name
+            inputs = fingerprint(result, descriptor.name, standalone=True)
+            report = None if out is None else unchanged_package(out, stamps, inputs)
+            if report is not None:
+                _say_generated(descriptor.name, out, report)
+                uses_runtime = uses_runtime or \
+                    RUNTIME_PACKAGE in descriptor.get_dependencies()
+                continue
             try:
                 plan = plan_package(result.workspace, descriptor.name)
-                for path in create_missing_user_files(plan):
-                    print(f'created {display_path(path)}: yours to fill in')
-                if out_base is not None:
-                    out = out_base / descriptor.name
-                    # output the user keeps (it may be under version
-                    # control), unlike the build tree: made durable
-                    report = generate_package(plan, out, sync=True)
-                    print(f'generated {descriptor.name} in {display_path(out)}: '
-                          f'{len(report.written)} written, '
-                          f'{len(report.unchanged)} unchanged, '
-                          f'{len(report.removed)} removed')
-                uses_runtime = uses_runtime or RUNTIME_PACKAGE in plan.depends
+                create_missing_user_files(plan, created)
+                todo.append((plan, out, inputs))
             except RobmosysError as error:
                 print_diagnostics(error.diagnostics)
                 found += error.diagnostics
                 status = 1
+        # the user's files, made durable together, before the packages read them
+        for path in created.commit():
+            print(f'created {display_path(path)}: yours to fill in')
+        try:
+            for plan, out, inputs in todo:
+                try:
+                    if out is not None:
+                        # output the user keeps (it may be under version
+                        # control), unlike the build tree: made durable
+                        _say_generated(plan.name, out, generate_package(
+                            plan, out, durable=generating, stamps=stamps,
+                            fingerprint=inputs))
+                    uses_runtime = uses_runtime or RUNTIME_PACKAGE in plan.depends
+                except RobmosysError as error:
+                    print_diagnostics(error.diagnostics)
+                    found += error.diagnostics
+                    status = 1
+        finally:
+            generating.commit()
         if args.export is not None:
             _say_not_exported(decorators, selected, uses_runtime=uses_runtime)
         provider = installed_runtime(
@@ -169,7 +201,9 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
         elif args.export is not None and uses_runtime and status == 0:
             out = args.export / RUNTIME_PACKAGE
             try:
-                report = write_tree(_runtime_files(), out)
+                exported = Durable()
+                report = write_tree(_runtime_files(), out, durable=exported)
+                exported.commit()
             except RobmosysError as error:
                 print_diagnostics(error.diagnostics)
                 found += error.diagnostics
@@ -179,6 +213,14 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
                   f'{len(report.unchanged)} unchanged, '
                   f'{len(report.removed)} removed')
         return status
+
+
+def _say_generated(package, out, report):
+    """Say what the generation of a package wrote."""
+    print(f'generated {package} in {display_path(out)}: '
+          f'{len(report.written)} written, '
+          f'{len(report.unchanged)} unchanged, '
+          f'{len(report.removed)} removed')
 
 
 def _say_not_exported(decorators, models, *, uses_runtime):

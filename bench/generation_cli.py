@@ -1,0 +1,131 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""The generation through the CLI (issue 28, P1), against colcon list and the disk.
+
+In one workspace of N synthetic components, each round times, after a flush of the
+disk (``sync``) so that no step pays for the writes of the one before:
+
+- ``colcon list``: what colcon costs before any generation starts;
+- a first ``colcon robmosys-generate --output-dir gen``: nothing checked, cached or
+  generated before, the implementation files created too;
+- the same again, with nothing changed;
+- ``cp -r gen``: copying its output, the files and folders it wrote, on the same disk;
+- writing the same files with Python's ``open()`` and ``write()``, folders made once:
+  the floor the in-process benchmark compares with.
+
+The goals: a no-change generation within 1.5x of ``colcon list``; a first generation
+within 1.5x of (the no-change generation + ``cp -r`` of its output). The fastest of the
+rounds counts; rounds use fresh workspaces, and what a round wrote is removed, then
+flushed, before the next (removing 40,000 files keeps the disk busy for seconds).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+import os
+from pathlib import Path
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+from benchlib import ratio, spread
+from colcon_robmosys.devtools import ros_env
+from synthetic import write_workspace
+
+#: The goals of issue 28, P1.
+GOAL_NO_CHANGE = 1.5
+GOAL_FIRST = 1.5
+
+
+@dataclass
+class CliTimes:
+    """Seconds of each step, one entry per round."""
+
+    listing: list[float] = field(default_factory=list)
+    first: list[float] = field(default_factory=list)
+    again: list[float] = field(default_factory=list)
+    copy: list[float] = field(default_factory=list)
+    plain: list[float] = field(default_factory=list)
+    files: int = 0
+
+
+def _timed_run(command: list[str], cwd: Path, timeout: float) -> float:
+    """Run a command after a flush of the disk; return its wall-clock seconds."""
+    os.sync()
+    env = ros_env.loopback_env(ros_env.free_domain_id())
+    start = time.perf_counter()
+    result = subprocess.run(command, cwd=cwd, env=env, capture_output=True, text=True,
+                            timeout=timeout)
+    elapsed = time.perf_counter() - start
+    if result.returncode:
+        raise RuntimeError(f'{" ".join(command)} failed:\n{result.stdout}{result.stderr}')
+    return elapsed
+
+
+def write_plainly(source: Path, target: Path) -> float:
+    """Write the files below source below target with open() and write(); return seconds.
+
+    The files are read beforehand, the disk flushed, the folders made once.
+    """
+    files = {p.relative_to(source): p.read_bytes() for p in sorted(source.rglob('*'))
+             if p.is_file()}
+    os.sync()
+    start = time.perf_counter()
+    made = set()
+    for relative, data in files.items():
+        folder = target / relative.parent
+        if folder not in made:
+            folder.mkdir(parents=True, exist_ok=True)
+            made.add(folder)
+        with open(target / relative, 'wb') as stream:
+            stream.write(data)
+    return time.perf_counter() - start
+
+
+def measure(components: int, rounds: int, cpp_every: int, timeout: float = 1800) -> CliTimes:
+    """Time the steps in ``rounds`` fresh workspaces of that many components."""
+    colcon = str(Path(sys.prefix) / 'bin' / 'colcon')
+    times = CliTimes()
+    for _ in range(rounds):
+        with tempfile.TemporaryDirectory(prefix='robmosys-bench-cli-') as tmp:
+            root = Path(tmp)
+            write_workspace(root / 'src', components, cpp_every=cpp_every)
+            generate = [colcon, 'robmosys-generate', '--output-dir', 'gen']
+            times.listing.append(_timed_run([colcon, 'list'], root, timeout))
+            times.first.append(_timed_run(generate, root, timeout))
+            times.again.append(_timed_run(generate, root, timeout))
+            times.copy.append(_timed_run(['cp', '-r', 'gen', 'copy'], root, timeout))
+            times.plain.append(write_plainly(root / 'gen', root / 'plain'))
+            times.files = sum(1 for p in (root / 'gen').rglob('*') if p.is_file())
+            shutil.rmtree(root / 'copy')
+            shutil.rmtree(root / 'plain')
+        os.sync()
+    return times
+
+
+def report(components: int, times: CliTimes) -> list[str]:
+    """Return the figures and the goals, one line each."""
+    listing, first, again = min(times.listing), min(times.first), min(times.again)
+    copy, plain = min(times.copy), min(times.plain)
+
+    def met(value: float, goal: float) -> str:
+        return 'met' if value <= goal else 'NOT met'
+
+    no_change = again / listing
+    first_ratio = first / (again + copy)
+    return [
+        f'through the CLI, N={components} ({times.files} files generated; fastest of '
+        f'{len(times.first)} round(s), each step after a flush of the disk):',
+        f'  colcon list {listing:.2f} s; first generation {first:.2f} s; no-change '
+        f'generation {again:.2f} s; cp -r of the output {copy:.2f} s; the same files '
+        f'written with open()/write() {plain:.2f} s ({ratio(plain, copy)} of cp -r)',
+        f'  goal P1 no change: no-change generation / colcon list = {no_change:.2f}x '
+        f'(goal <= {GOAL_NO_CHANGE}x): {met(no_change, GOAL_NO_CHANGE)}',
+        f'  goal P1 first: first generation / (no-change generation + cp -r) = '
+        f'{first_ratio:.2f}x (goal <= {GOAL_FIRST}x): {met(first_ratio, GOAL_FIRST)}',
+        f'  spread: list {spread(times.listing)}; first {spread(times.first)}; '
+        f'no change {spread(times.again)}; cp -r {spread(times.copy)}; '
+        f'open/write {spread(times.plain)}',
+    ]
