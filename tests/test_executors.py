@@ -2,8 +2,9 @@
 # Licensed under the Apache License, Version 2.0
 """Executors from the model: each pattern works on each executor the check allows.
 
-The default is the fastest executor that is correct for the component (events, unless
-a function may block in a call); a named one is honoured, in a component's own process
+The default is the cheapest executor that is correct for the component (one thread
+unless a function may block in a call: events in C++, single-threaded in Python, whose
+EventsExecutor crashed a node configured again after its cleanup); a named one is honoured, in a component's own process
 and in a system's shared process. One workspace, built once for the module, holds a
 server and a client of every pattern (push, query, action, event, periodic activities,
 lifecycle transitions) per executor; the multi-threaded client also blocks in calls.
@@ -109,11 +110,11 @@ def client(executor: str, named: bool, blocking: bool) -> dict:
     }
 
 
-#: executor -> (server named?, client named?, client blocks?): the events pair runs on
-#: the default, the single-threaded pair is named, the multi-threaded client is the
+#: executor -> (server named?, client named?, client blocks?): the single-threaded pair
+#: runs on Python's default, the events pair is named, the multi-threaded client is the
 #: default of a component that blocks in calls
-PAIRS = {'events': (False, False, False),
-         'single-threaded': (True, True, False),
+PAIRS = {'events': (True, True, False),
+         'single-threaded': (False, False, False),
          'multi-threaded': (True, False, True)}
 
 
@@ -160,18 +161,20 @@ def _worked(output: str) -> dict[str, bool]:
             'event': bool(re.search(r'^event \[(1\d|[2-9]\d)', output, re.MULTILINE))}
 
 
-def test_the_default_is_events_unless_a_function_blocks():
+def test_the_default_is_one_thread_unless_a_function_blocks():
     models = _models()
-    assert component_executor(_component(models['events'][1])) is Executor.EVENTS
+    assert component_executor(_component(models['single-threaded'][1])) is \
+        Executor.SINGLE_THREADED
     assert component_executor(_component(models['multi-threaded'][1])) is \
         Executor.MULTI_THREADED
-    assert component_executor(_component(models['single-threaded'][0])) is \
-        Executor.SINGLE_THREADED
+    assert component_executor(_component(models['events'][0])) is Executor.EVENTS
     components = [_component(m[1]) for m in models.values()]
     assert shared_executor(None, components) is Executor.MULTI_THREADED
-    assert shared_executor(None, components[:1]) is Executor.EVENTS
-    assert shared_executor(Executor.SINGLE_THREADED, components[:1]) is \
-        Executor.SINGLE_THREADED
+    assert shared_executor(None, components[1:2]) is Executor.SINGLE_THREADED
+    assert shared_executor(Executor.EVENTS, components[1:2]) is Executor.EVENTS
+    # C++'s default of one thread is rclcpp's EventsExecutor
+    cpp = _component({**models['single-threaded'][1], 'language': 'cpp'})
+    assert component_executor(cpp) is Executor.EVENTS
 
 
 def _component(raw: dict):
@@ -222,6 +225,12 @@ def test_every_pattern_works_on_the_executor(built, domain_id, executor):
         if executor == 'multi-threaded':
             assert wait_until(lambda: 'blocking answer 10' in client_output() and
                               'blocking result [3]' in client_output(), 30), output()
+        if executor == 'events':
+            # rclpy's EventsExecutor (7.1.6, 9.1.2) crashed the client configured again
+            # after its cleanup (docs/model-format.md, Executors): not cycled here
+            for role in ('client', 'server'):
+                assert change(role, 'deactivate'), output()
+            return
         # the ports go and come back: cleanup and configure again on the same executor
         for transition in ('deactivate', 'cleanup'):
             for role in ('client', 'server'):

@@ -8,7 +8,8 @@ on one thread, without rebuilding a wait set per callback: the cheapest per
 message. A single thread is correct unless a function waits, inside a callback,
 for an answer that the executor itself has to deliver: a blocking ``call`` of a
 query client or ``send_goal`` of an action client (``blocking_calls`` of the
-port-kind table). Such a component needs the multi-threaded executor.
+port-kind table). Such a component needs the multi-threaded executor; the others
+run on their backend's cheapest correct one thread (``Backend.one_thread``).
 """
 
 from __future__ import annotations
@@ -62,7 +63,11 @@ def component_executor(component: Component) -> Executor:
     """Return the executor of a component's own process: named, or the fastest correct one."""
     if component.executor is not None:
         return component.executor
-    return Executor.MULTI_THREADED if blocking_calls(component) else Executor.EVENTS
+    if blocking_calls(component):
+        return Executor.MULTI_THREADED
+    # the backends' module imports the mapping of components, which imports this one
+    from colcon_robmosys.mapping.backends import backend
+    return backend(component.language).one_thread
 
 
 def shared_executor(named: Executor | None, components: Iterable[Component]) -> Executor:

@@ -23,7 +23,7 @@ from colcon_robmosys.mapping.context import ComponentContext
 from colcon_robmosys.mapping.portkinds import Entity, PortKind, Returns
 from colcon_robmosys.mapping.tables import Row, UserRow
 from colcon_robmosys.mapping.userfiles import UserFolders
-from colcon_robmosys.model.types import Component, Language
+from colcon_robmosys.model.types import Component, Executor, Language
 
 
 @dataclass(frozen=True)
@@ -72,6 +72,9 @@ class Backend(ABC):
     #: every package its components may need from the ROS 2 prefix, not
     #: from PyPI nor the workspace: without them a build is skipped
     prefix_packages: tuple[str, ...] = ()
+    #: the executor of a component that blocks no thread and names none: the
+    #: cheapest that is correct in the language (mapping/executors.py)
+    one_thread: Executor = Executor.EVENTS
 
     @abstractmethod
     def spell(self, component: Component, plan: ComponentPlan,

@@ -23,7 +23,7 @@ from colcon_robmosys.mapping.component import ComponentPlan
 from colcon_robmosys.mapping.context import ComponentContext
 from colcon_robmosys.mapping.tables import Row, UserRow
 from colcon_robmosys.mapping.userfiles import UserFolders
-from colcon_robmosys.model.types import Component, Language
+from colcon_robmosys.model.types import Component, Executor, Language
 
 _SKEL = 'src-skel/{package}/{cls}_impl_skel.py'
 
@@ -59,6 +59,10 @@ class PythonBackend(Backend):
     entities = ENTITIES
     starter = 'component_python/starter.jinja'
     return_types = RETURN_TYPES
+    # rclpy's EventsExecutor (7.1.6, 9.1.2) crashed a lifecycle node configured again
+    # after its cleanup (the entities destroyed and made anew): events is for models
+    # that name it, rclpy's own default is the default here
+    one_thread = Executor.SINGLE_THREADED
 
     def spell(self, component: Component, plan: ComponentPlan,
               folders: UserFolders) -> PyComponent:

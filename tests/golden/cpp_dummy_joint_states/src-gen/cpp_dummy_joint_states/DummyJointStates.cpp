@@ -63,8 +63,11 @@ double DummyJointStates::Parameters::speed() const
 std::map<std::string, DummyJointStates::Parameters::JointNamesEntry>
 DummyJointStates::Parameters::joint_names_map() const
 {
+  // a copy: the rclcpp::Parameter that get_parameter() returns is a temporary
+  const std::vector<std::string> names =
+    node_.get_parameter("joint_names").as_string_array();
   std::map<std::string, JointNamesEntry> entries;
-  for (const auto & entry : node_.get_parameter("joint_names").as_string_array()) {
+  for (const auto & entry : names) {
     entries.emplace(entry, JointNamesEntry(node_, entry));
   }
   return entries;
