@@ -84,8 +84,11 @@ class SystemParameters:
                             f'(its nodes: {known})')]
         problems: List[Problem] = []
         for value in entry.values:
-            having = {fqn: self.declared(fqn, value.name) for fqn in matched
-                      if self.declared(fqn, value.name) is not None}
+            having: Dict[str, Dict[str, Any]] = {}
+            for fqn in matched:
+                declared = self.declared(fqn, value.name)
+                if declared is not None:
+                    having[fqn] = declared
             if not having:
                 problems.append(self._unknown(entry, value, matched, wildcard))
                 continue
@@ -143,7 +146,7 @@ def value_problems(value: FileValue, declared: Dict[str, Any], running: bool
     one_of, size = declared.get('one_of'), declared.get('size')
     if one_of is not None or size is not None:
         rule = ParameterRule(one_of=tuple(one_of) if one_of is not None else None,
-                             size=tuple(size) if size is not None else None)  # type: ignore
+                             size=tuple(size) if size is not None else None)
         problem = rule_problem(rule, value.value)
         if problem:
             problems.append((_element_at(value, problem), 'error', problem))

@@ -102,7 +102,7 @@ class _Loader(yaml.SafeLoader):
     def compose_scalar_node(self, anchor: Any) -> Any:
         event = self.peek_event()
         node = super().compose_scalar_node(anchor)
-        node.explicit_tag = event.tag not in (None, '!')
+        node.explicit_tag = event.tag not in (None, '!')  # type: ignore[attr-defined]
         return node
 
 
@@ -262,7 +262,8 @@ def _read_array(name: str, key: Any, sequence: Any, result: ParameterFile
             f"'{name}' is an empty list: rcl cannot tell its type, and no node can "
             'take it (leave it out to keep the default)')))
         return None
-    types, values = [], []
+    types: List[str] = []
+    values: List[Any] = []
     for element in sequence.value:
         if not isinstance(element, yaml.ScalarNode):
             result.problems.append(Problem(*_at(element), (
@@ -313,15 +314,15 @@ def rcl_value(scalar: Any) -> Optional[Tuple[str, Any]]:
             return 'int', value
     special = _SPECIAL.match(text)
     if special is not None:
-        value = float(special.group(1))
-        return 'double', -value if text.startswith('-') else value
+        double = float(special.group(1))
+        return 'double', -double if text.startswith('-') else double
     number = _DOUBLE.match(text)
     if number is not None:
         hexadecimal, named = number.groups()
         stripped = text.strip()
-        value = float.fromhex(stripped) if hexadecimal else \
+        double = float.fromhex(stripped) if hexadecimal else \
             float(stripped.split('(')[0]) if named else float(stripped)
         # strtod's overflow is an error to rcl (errno): the text stays a string
-        if not math.isinf(value) or named:
-            return 'double', value
+        if not math.isinf(double) or named:
+            return 'double', double
     return 'string', text
