@@ -4,10 +4,11 @@
 
 The default is the cheapest executor that is correct for the component (one thread
 unless a function may block in a call: events in C++, single-threaded in Python, whose
-EventsExecutor crashed a node configured again after its cleanup); a named one is honoured, in a component's own process
-and in a system's shared process. One workspace, built once for the module, holds a
-server and a client of every pattern (push, query, action, event, periodic activities,
-lifecycle transitions) per executor; the multi-threaded client also blocks in calls.
+EventsExecutor crashed a node configured again after its cleanup); a named one is
+honoured, in a component's own process and in a system's shared process. One
+workspace, built once for the module, holds a server and a client of every pattern
+(push, query, action, event, periodic activities, lifecycle transitions) per executor;
+the multi-threaded client also blocks in calls.
 """
 
 from __future__ import annotations
