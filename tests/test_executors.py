@@ -2,10 +2,9 @@
 # Licensed under the Apache License, Version 2.0
 """Executors from the model: each pattern works on each executor the check allows.
 
-The default is the cheapest executor that is correct for the component (one thread
-unless a function may block in a call: events in C++, single-threaded in Python, whose
-EventsExecutor crashed a node configured again after its cleanup); a named one is
-honoured, in a component's own process and in a system's shared process. One
+The default is events in C++ unless a function may block in a call, and multi-threaded
+in Python (rclpy's EventsExecutor crashed a node configured again after its cleanup); a
+named one is honoured, in a component's own process and in a system's shared process. One
 workspace, built once for the module, holds a server and a client of every pattern
 (push, query, action, event, periodic activities, lifecycle transitions) per executor;
 the multi-threaded client also blocks in calls.
@@ -111,11 +110,11 @@ def client(executor: str, named: bool, blocking: bool) -> dict:
     }
 
 
-#: executor -> (server named?, client named?, client blocks?): the single-threaded pair
-#: runs on Python's default, the events pair is named, the multi-threaded client is the
-#: default of a component that blocks in calls
+#: executor -> (server named?, client named?, client blocks?): the events and the
+#: single-threaded pairs are named, the multi-threaded server runs on Python's default
+#: and the client blocks in calls
 PAIRS = {'events': (True, True, False),
-         'single-threaded': (False, False, False),
+         'single-threaded': (True, True, False),
          'multi-threaded': (True, False, True)}
 
 
@@ -162,19 +161,22 @@ def _worked(output: str) -> dict[str, bool]:
             'event': bool(re.search(r'^event \[(1\d|[2-9]\d)', output, re.MULTILINE))}
 
 
-def test_the_default_is_one_thread_unless_a_function_blocks():
+def test_the_default_is_named_or_the_language_s_unless_a_function_blocks():
     models = _models()
-    assert component_executor(_component(models['single-threaded'][1])) is \
-        Executor.SINGLE_THREADED
+    assert component_executor(_component(models['multi-threaded'][0])) is \
+        Executor.MULTI_THREADED
     assert component_executor(_component(models['multi-threaded'][1])) is \
         Executor.MULTI_THREADED
     assert component_executor(_component(models['events'][0])) is Executor.EVENTS
+    assert component_executor(_component(models['single-threaded'][0])) is \
+        Executor.SINGLE_THREADED
     components = [_component(m[1]) for m in models.values()]
     assert shared_executor(None, components) is Executor.MULTI_THREADED
     assert shared_executor(None, components[1:2]) is Executor.SINGLE_THREADED
     assert shared_executor(Executor.EVENTS, components[1:2]) is Executor.EVENTS
-    # C++'s default of one thread is rclcpp's EventsExecutor
-    cpp = _component({**models['single-threaded'][1], 'language': 'cpp'})
+    # C++'s default, where no function blocks, is rclcpp's EventsExecutor
+    cpp = _component({**{k: v for k, v in models['events'][0].items() if k != 'executor'},
+                      'language': 'cpp'})
     assert component_executor(cpp) is Executor.EVENTS
 
 

@@ -9,7 +9,7 @@ message. A single thread is correct unless a function waits, inside a callback,
 for an answer that the executor itself has to deliver: a blocking ``call`` of a
 query client or ``send_goal`` of an action client (``blocking_calls`` of the
 port-kind table). Such a component needs the multi-threaded executor; the others
-run on their backend's cheapest correct one thread (``Backend.one_thread``).
+run on their backend's default (``Backend.default_executor``).
 """
 
 from __future__ import annotations
@@ -67,7 +67,7 @@ def component_executor(component: Component) -> Executor:
         return Executor.MULTI_THREADED
     # the backends' module imports the mapping of components, which imports this one
     from colcon_robmosys.mapping.backends import backend
-    return backend(component.language).one_thread
+    return backend(component.language).default_executor
 
 
 def shared_executor(named: Executor | None, components: Iterable[Component]) -> Executor:

@@ -72,9 +72,9 @@ class Backend(ABC):
     #: every package its components may need from the ROS 2 prefix, not
     #: from PyPI nor the workspace: without them a build is skipped
     prefix_packages: tuple[str, ...] = ()
-    #: the executor of a component that blocks no thread and names none: the
-    #: cheapest that is correct in the language (mapping/executors.py)
-    one_thread: Executor = Executor.EVENTS
+    #: the executor of a component that blocks no thread and names none
+    #: (mapping/executors.py)
+    default_executor: Executor = Executor.EVENTS
 
     @abstractmethod
     def spell(self, component: Component, plan: ComponentPlan,
