@@ -360,6 +360,20 @@ def _processes_with(marker: str) -> list[int]:
     return pids
 
 
+def _descendants(root: int) -> set[int]:
+    """Return the pids of the processes that root started, and theirs."""
+    found: set[int] = set()
+    todo = [root]
+    while todo:
+        pid = todo.pop()
+        with contextlib.suppress(OSError):
+            for task in Path(f'/proc/{pid}/task').iterdir():
+                children = [int(c) for c in (task / 'children').read_text().split()]
+                found.update(children)
+                todo += children
+    return found
+
+
 def test_shared_processes_run_the_python_instances_in_one_process(test_workspace_built,
                                                                   tmp_path):
     description = _description(test_workspace_built)
@@ -373,9 +387,9 @@ def test_shared_processes_run_the_python_instances_in_one_process(test_workspace
         containers = [p for p in _processes_with('robmosys_runtime.container')
                       if str(path).encode() in Path(f'/proc/{p}/cmdline').read_bytes()]
         assert len(containers) == 1, containers
+        # (of this bringup: other tests may run the same install beside it)
         assert not [p for p in _processes_with('__node:=sender')
-                    if str(test_workspace_built.root).encode() in
-                    Path(f'/proc/{p}/cmdline').read_bytes()]
+                    if p in _descendants(bringup.proc.pid)]
         bringup.proc.send_signal(signal.SIGINT)
         assert bringup.proc.wait(timeout=60) == 0, bringup.output()
         output = bringup.output()
