@@ -7,7 +7,7 @@ of ``handwritten_pubsub.py``, keep_last 10, reliable), each a lifecycle node in 
 of its own, on loopback DDS:
 
 - **generated**: the listener model of ``bench_runtime.py``, built with colcon, on the
-  executor its model gets by default (events: it makes no blocking call);
+  executor its model names (events; Python's default is multi-threaded);
 - **hand-written, default**: ``handwritten_pubsub.py listener default``, spun by
   ``rclpy.spin(node)`` (rclpy's SingleThreadedExecutor), as the ROS 2 tutorials write it;
 - **hand-written, same executor**: the same node on the generated one's executor.
@@ -40,7 +40,7 @@ from benchlib import print_end, print_machine, ratio, table
 from colcon_robmosys.devtools import ros_env
 
 KINDS = ('generated', 'hand-written, default', 'hand-written, same executor')
-#: the executor of the generated listener: what its model gets by default
+#: the executor of the generated listener: the one its model names
 GENERATED_EXECUTOR = 'events'
 HANDWRITTEN_EXECUTOR = {'hand-written, default': 'default',
                         'hand-written, same executor': GENERATED_EXECUTOR}

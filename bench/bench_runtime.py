@@ -98,6 +98,8 @@ TALKER = {
 }
 LISTENER = {
     'name': 'Listener', 'package': 'bench_listener', 'language': 'python',
+    # the cheapest executor (Python's default is multi-threaded: docs/model-format.md)
+    'executor': 'events',
     'ports': {'rSample': {'pattern': 'push', 'role': 'required',
                           'type': 'std_msgs/msg/Header', 'qos': QOS}},
     'activities': {'Receive': {'trigger': 'rSample', 'functions': ['fReceive']}},
