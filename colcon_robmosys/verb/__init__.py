@@ -6,6 +6,9 @@ from pathlib import Path
 import re
 import sys
 
+from colcon_core.plugin_system import satisfies_version
+from colcon_core.verb import VerbExtensionPoint
+
 from colcon_robmosys.report import FORMATS
 from colcon_robmosys.report import ReportRequest
 
@@ -70,3 +73,23 @@ def missing_subverb(parser, subverbs, args):
     print(f'{parser.prog}: error: the following arguments are required: '
           f"{{{','.join(subverbs.choices)}}}", file=sys.stderr)
     return 2
+
+
+class SubverbVerb(VerbExtensionPoint):
+    """A verb whose work is one of its sub-verbs: ``colcon VERB SUBVERB ...``."""
+
+    def __init__(self):  # noqa: D107
+        super().__init__()
+        satisfies_version(VerbExtensionPoint.EXTENSION_POINT_VERSION, '^1.0')
+        # the verb's parser and its sub-verbs: main() reports a missing one
+        self._parser = self._subverbs = None
+
+    def add_subverbs(self, parser, *, title, dest):
+        """Add the sub-verbs (see :func:`add_subverbs`); return the action."""
+        self._parser = parser
+        self._subverbs = add_subverbs(parser, title=title, dest=dest)
+        return self._subverbs
+
+    def missing_subverb(self, args):
+        """Return 2 after argparse's usage error if no sub-verb was given, else None."""
+        return missing_subverb(self._parser, self._subverbs, args)

@@ -9,8 +9,6 @@ import sys
 from colcon_core.package_selection import add_arguments \
     as add_packages_arguments
 from colcon_core.package_selection import get_packages
-from colcon_core.plugin_system import satisfies_version
-from colcon_core.verb import VerbExtensionPoint
 
 from colcon_robmosys.errors import Diagnostic
 from colcon_robmosys.errors import Location
@@ -22,12 +20,11 @@ from colcon_robmosys.report import write_report
 from colcon_robmosys.runtime import environ_prefixes
 from colcon_robmosys.runtime import runtime_module
 from colcon_robmosys.verb import add_diagnostics_arguments
-from colcon_robmosys.verb import add_subverbs
 from colcon_robmosys.verb import diagnostics_request
-from colcon_robmosys.verb import missing_subverb
+from colcon_robmosys.verb import SubverbVerb
 
 
-class RobmosysCheckVerb(VerbExtensionPoint):
+class RobmosysCheckVerb(SubverbVerb):
     """Check files against the models of the workspace or installed systems.
 
     ``params``: an operator's parameter files against a system, as
@@ -35,14 +32,8 @@ class RobmosysCheckVerb(VerbExtensionPoint):
     installed (the same code: robmosys_runtime.paramcheck).
     """
 
-    def __init__(self):  # noqa: D107
-        super().__init__()
-        satisfies_version(VerbExtensionPoint.EXTENSION_POINT_VERSION, '^1.0')
-        self._parser = self._kinds = None
-
     def add_arguments(self, *, parser):  # noqa: D102
-        self._parser = parser
-        self._kinds = kinds = add_subverbs(parser, title='what to check', dest='what')
+        kinds = self.add_subverbs(parser, title='what to check', dest='what')
         params = kinds.add_parser(
             'params',
             help='ROS 2 parameter files against a system: the nodes and '
@@ -64,7 +55,7 @@ class RobmosysCheckVerb(VerbExtensionPoint):
 
     def main(self, *, context):  # noqa: D102
         args = context.args
-        missing = missing_subverb(self._parser, self._kinds, args)
+        missing = self.missing_subverb(args)
         if missing:
             return missing
         request = diagnostics_request(args)

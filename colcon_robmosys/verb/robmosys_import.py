@@ -5,8 +5,6 @@ import os
 from pathlib import Path
 import sys
 
-from colcon_core.plugin_system import satisfies_version
-from colcon_core.verb import VerbExtensionPoint
 
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.errors import print_diagnostics
@@ -16,28 +14,20 @@ from colcon_robmosys.importer.interfaces import import_interfaces
 from colcon_robmosys.importer.running import import_running_system
 from colcon_robmosys.model import rosidl
 from colcon_robmosys.model.names import package_problem
-from colcon_robmosys.verb import add_subverbs
 from colcon_robmosys.verb import display_path
 from colcon_robmosys.verb import MAINTAINER
-from colcon_robmosys.verb import missing_subverb
+from colcon_robmosys.verb import SubverbVerb
 
 
-class RobmosysImportVerb(VerbExtensionPoint):
+class RobmosysImportVerb(SubverbVerb):
     """Write models of what already exists: interface packages, running systems.
 
     Each model is written once, to DIR/<package>/robmosys.yaml: an existing
     file is never replaced.
     """
 
-    def __init__(self):  # noqa: D107
-        super().__init__()
-        satisfies_version(VerbExtensionPoint.EXTENSION_POINT_VERSION, '^1.0')
-        # the verb's parser and its sub-verbs: main() reports a missing one
-        self._parser = self._kinds = None
-
     def add_arguments(self, *, parser):  # noqa: D102
-        self._parser = parser
-        self._kinds = kinds = add_subverbs(parser, title='what to import', dest='what')
+        kinds = self.add_subverbs(parser, title='what to import', dest='what')
         interfaces = kinds.add_parser(
             'interfaces',
             help='Service definitions of installed interface packages '
@@ -83,7 +73,7 @@ class RobmosysImportVerb(VerbExtensionPoint):
 
     def main(self, *, context):  # noqa: D102
         args = context.args
-        missing = missing_subverb(self._parser, self._kinds, args)
+        missing = self.missing_subverb(args)
         if missing:
             return missing
         try:

@@ -9,8 +9,6 @@ from colcon_core.package_discovery import add_package_discovery_arguments
 from colcon_core.package_discovery import discover_packages
 from colcon_core.package_identification import \
     get_package_identification_extensions
-from colcon_core.plugin_system import satisfies_version
-from colcon_core.verb import VerbExtensionPoint
 
 from colcon_robmosys.check import load_workspace
 from colcon_robmosys.generators.starter import Maintainer
@@ -25,10 +23,9 @@ from colcon_robmosys.model.names import package_problem
 from colcon_robmosys.model.types import Component
 from colcon_robmosys.model.types import Language
 from colcon_robmosys.package_discovery.robmosys import METADATA_KEY
-from colcon_robmosys.verb import add_subverbs
 from colcon_robmosys.verb import display_path
 from colcon_robmosys.verb import MAINTAINER
-from colcon_robmosys.verb import missing_subverb
+from colcon_robmosys.verb import SubverbVerb
 
 #: what the kinds say in the help and in what the verb prints
 KINDS = {
@@ -38,22 +35,15 @@ KINDS = {
 }
 
 
-class RobmosysNewVerb(VerbExtensionPoint):
+class RobmosysNewVerb(SubverbVerb):
     """Write a commented starting model: a service definition, a component, a system.
 
     The model goes to DIR/NAME/robmosys.yaml, valid and ready to build; an
     existing file is never replaced.
     """
 
-    def __init__(self):  # noqa: D107
-        super().__init__()
-        satisfies_version(VerbExtensionPoint.EXTENSION_POINT_VERSION, '^1.0')
-        # the verb's parser and its sub-verbs: main() reports a missing one
-        self._parser = self._kinds = None
-
     def add_arguments(self, *, parser):  # noqa: D102
-        self._parser = parser
-        self._kinds = kinds = add_subverbs(parser, title='the kind of model', dest='kind')
+        kinds = self.add_subverbs(parser, title='the kind of model', dest='kind')
         for kind, help_ in KINDS.items():
             sub = kinds.add_parser(kind, help=help_)
             sub.add_argument(
@@ -90,7 +80,7 @@ class RobmosysNewVerb(VerbExtensionPoint):
 
     def main(self, *, context):  # noqa: D102
         args = context.args
-        missing = missing_subverb(self._parser, self._kinds, args)
+        missing = self.missing_subverb(args)
         if missing:
             return missing
         problems = [f'error: {p}' for p in name_problems(args.kind, args.name)]
