@@ -35,13 +35,13 @@ import statistics
 import tempfile
 from typing import Sequence
 
-from bench_runtime import build, commands, HANDWRITTEN, Run, run_pair, write_models
+from bench_runtime import build, commands, HANDWRITTEN, LISTENER, Run, run_pair, write_models
 from benchlib import print_end, print_machine, ratio, table
 from colcon_robmosys.devtools import ros_env
 
 KINDS = ('generated', 'hand-written, default', 'hand-written, same executor')
 #: the executor of the generated listener: the one its model names
-GENERATED_EXECUTOR = 'events'
+GENERATED_EXECUTOR = LISTENER['executor']
 HANDWRITTEN_EXECUTOR = {'hand-written, default': 'default',
                         'hand-written, same executor': GENERATED_EXECUTOR}
 #: bursts (messages per 10 ms) tried for the highest rate the hand-written node keeps up with
