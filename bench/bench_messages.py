@@ -41,7 +41,7 @@ from colcon_robmosys.devtools import ros_env
 
 KINDS = ('generated', 'hand-written, default', 'hand-written, same executor')
 #: the executor of the generated listener: the one its model names
-GENERATED_EXECUTOR = LISTENER['executor']
+GENERATED_EXECUTOR = str(LISTENER['executor'])
 HANDWRITTEN_EXECUTOR = {'hand-written, default': 'default',
                         'hand-written, same executor': GENERATED_EXECUTOR}
 #: bursts (messages per 10 ms) tried for the highest rate the hand-written node keeps up with

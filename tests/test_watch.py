@@ -36,8 +36,9 @@ pytestmark = [pytest.mark.integration, requires_ros]
 #: the check period of the managers under test
 PERIOD = 0.5
 #: three check periods, and what DDS discovery takes to show a new endpoint to the
-#: manager on a busy machine (measured here: 0.2 s to 3.5 s with a load of 8 on 2 cores)
-WITHIN = 3 * PERIOD + 3.0
+#: manager on a busy machine (measured here: 0.2 s to 3.5 s with a load of 8 on 2 cores;
+#: more than 3 s in CI, where both distributions' suites share 2 cores)
+WITHIN = 3 * PERIOD + 8.0
 #: how long the steady run lasts
 STEADY = float(os.environ.get('ROBMOSYS_WATCH_STEADY', '60'))
 SYSTEMS = ('dummy_robot_bringup', 'examples_system')
