@@ -40,6 +40,9 @@ class BuiltWorkspace:
     root: Path
     build_output: str
     bases: workspace.Bases = field(default_factory=workspace.Bases)
+    #: where this build came after an earlier one of the same folders (the demo's, in
+    #: CI): the mtime of each file of build and install before it and after it
+    rebuilt: tuple[dict[str, int], dict[str, int]] | None = None
 
     @property
     def install(self) -> Path:
@@ -101,11 +104,22 @@ def test_workspace_built(tmp_path_factory) -> BuiltWorkspace:
     (TEST_WORKSPACE / bases.build).mkdir(exist_ok=True)
     with open(TEST_WORKSPACE / bases.build / '.tests.lock', 'w') as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
+        before = mtimes(TEST_WORKSPACE, bases.build, bases.install)
         result = colcon(bases.command('build', '--event-handlers', 'console_cohesion+'),
                         cwd=TEST_WORKSPACE)
+        after = mtimes(TEST_WORKSPACE, bases.build, bases.install)
     output = result.stdout + result.stderr
     assert result.returncode == 0, f'colcon build failed:\n{output}'
-    return BuiltWorkspace(TEST_WORKSPACE, output, bases)
+    # a build over an earlier one: tests/test_rebuild.py reads what it rewrote
+    earlier = any(n.startswith(f'{bases.install}/') for n in before)
+    return BuiltWorkspace(TEST_WORKSPACE, output, bases, (before, after) if earlier else None)
+
+
+def mtimes(root: Path, *bases: str) -> dict[str, int]:
+    """Return the mtime of each file below the bases of root, by its path from root."""
+    return {str(path.relative_to(root)): path.stat().st_mtime_ns
+            for base in bases for path in (root / base).rglob('*')
+            if path.is_file()}
 
 
 @pytest.fixture

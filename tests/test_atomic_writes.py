@@ -112,10 +112,15 @@ def _generate(src: Path, out: Path, *, kill_after: float | None = None,
             child.wait()
 
 
-def _generate_here(src: Path, out: Path) -> None:
+def _plans(src: Path) -> list:
+    """Return the plan of each package the models of src generate."""
     result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
-    for model in result.workspace.generated_models:
-        generate_package(plan_package(result.workspace, model.package), out / model.package)
+    return [plan_package(result.workspace, m.package) for m in result.workspace.generated_models]
+
+
+def _generate_here(plans: list, out: Path) -> None:
+    for plan in plans:
+        generate_package(plan, out / plan.name)
 
 
 def _files(root: Path) -> dict[str, bytes]:
@@ -162,6 +167,7 @@ def test_killed_generation_leaves_whole_files(tmp_path, durable):
     duration, printed = _generate(src, tmp_path / 'new', kill_at=10 ** 9, durable=durable)
     events = int(printed.split()[1])
     new = _outputs(tmp_path / 'new')
+    plans = _plans(src)
     assert old.keys() == new.keys()
     changed = {name for name in old
                if old[name] != new[name] and Path(name).name != MANIFEST}
@@ -198,7 +204,7 @@ def test_killed_generation_leaves_whole_files(tmp_path, durable):
                 seen.add(data == new[name])
         mixed += seen == {True, False}
         # the next generation completes the work and leaves nothing behind
-        _generate_here(src, out)
+        _generate_here(plans, out)
         assert _outputs(out) == new
     # the user's files beside the models were not touched
     assert {k: v for k, v in _files(src).items() if not k.endswith('robmosys.yaml')} == \
