@@ -21,7 +21,7 @@ import pytest
 from colcon_robmosys.devtools import ros_env
 from colcon_robmosys.devtools.ros_env import background, free_domain_id
 from colcon_robmosys.devtools.system import wait_until
-from conftest import build_workspace, requires_ros, TEST_WORKSPACE
+from conftest import requires_ros, TEST_WORKSPACE
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
@@ -62,12 +62,12 @@ systems:
 
 
 @pytest.fixture(scope='module')
-def underlay(tmp_path_factory) -> Path:
-    """Return the install of workspace A: simple_msgs, publisher, subscriber, pubsub_system."""
-    src = tmp_path_factory.mktemp('a_src') / 'src'
-    for package in ('simple_msgs', 'publisher', 'subscriber', 'pubsub_system'):
-        shutil.copytree(TEST_WORKSPACE / 'src' / package, src / package)
-    return build_workspace(src, tmp_path_factory.mktemp('a_ws')).install
+def underlay(test_workspace_built) -> Path:
+    """Return the install of workspace A: test_workspace, built once for the session.
+
+    Its simple_msgs, publisher, subscriber and pubsub_system are what B builds on.
+    """
+    return test_workspace_built.install
 
 
 def test_every_generated_package_installs_its_model(underlay):
