@@ -1,6 +1,7 @@
 # Development entry points. Needs only python3 (with venv and headers), gcc, cmake,
 # make and git: ROS 2 itself comes from PyPI into .venv (see requirements/ros.txt).
-#   make test   run the test suite (PYTEST_ARGS='-k foo' to narrow it)
+#   make test   run the test suite, in TEST_JOBS=2 processes (PYTEST_ARGS='-k foo' to
+#               narrow it)
 #   ROS_DISTRO=jazzy (on the command line: make test ROS_DISTRO=jazzy) does the same on
 #               ROS 2 Jazzy, in .venv-jazzy; Kilted is the default
 #   make demo   build test_workspace with colcon and run its example system through
@@ -37,6 +38,13 @@ PKG_FILES := $(shell find colcon_robmosys templates -type f ! -name '*.pyc' 2>/d
 # (a full run is to stay under 30 minutes).
 ifeq ($(CI),true)
 PYTEST_FLAGS := -p no:cacheprovider --durations=25
+endif
+# Test files run in TEST_JOBS processes (pytest-xdist), each file whole in one of them:
+# much of an integration test is waiting (for DDS discovery, a timer, a timeout), and
+# another file's build or nodes use that time. TEST_JOBS=1 runs them in this process.
+TEST_JOBS ?= 2
+ifneq ($(TEST_JOBS),1)
+PYTEST_FLAGS += -n $(TEST_JOBS) --dist loadfile
 endif
 
 .PHONY: venv demo test clean bench bench-generation bench-colcon bench-runtime bench-bringup bench-cppbuild bench-watch

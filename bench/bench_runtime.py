@@ -110,7 +110,9 @@ LISTENER = {
                            'self.latencies = []\n'
                            'self.first = self.start = self.last = 0\n'},
         'fReceive': {'code': 'now = self.now_ns()\n'
-                             'self.first = self.first or now\n'
+                             'if not self.first:\n'
+                             '    self.first = now\n'
+                             "    print('BENCH listener first', flush=True)\n"
                              'if now - self.first < self.warmup_ns:\n'
                              '    return\n'
                              'self.start = self.start or now\n'
@@ -215,10 +217,10 @@ def commands(kind: str, install: Path, burst: int, warmup: float) -> dict[str, l
 
 
 def _report(output: str, role: str) -> dict[str, Any] | None:
-    marker = f'BENCH {role} '
+    marker = f'BENCH {role} {{'
     for line in output.splitlines():
         if line.startswith(marker):
-            return json.loads(line[len(marker):])
+            return json.loads(line[len(marker) - 1:])
     return None
 
 
@@ -261,6 +263,12 @@ def run_pair(cmds: dict[str, list[str]], base_env: dict[str, str], burst: int,
             raise RuntimeError(f'the talker and the listener did not meet on {TOPIC}')
         for role in ('listener', 'talker'):
             transition(role, 'activate')
+        # and the window starts once messages flow: the graph shows both ends before DDS
+        # has matched them (up to seconds later on a loaded machine)
+        if not wait_until(lambda: 'BENCH listener first' in processes['listener'].output(),
+                          timeout=60):
+            raise RuntimeError('the listener received nothing:\n' +
+                               processes['listener'].output()[-3000:])
         time.sleep(warmup)
         # each process leads a process group of its own (ros_env.background)
         cpu_start = {role: group_cpu_seconds(p.proc.pid) for role, p in processes.items()}

@@ -167,7 +167,9 @@ class Listener(LifecycleNode):
         if not self._active:
             return
         now = self.now_ns()
-        self.first = self.first or now
+        if not self.first:
+            self.first = now
+            print('BENCH listener first', flush=True)
         if now - self.first < self.warmup_ns:
             return
         self.start = self.start or now

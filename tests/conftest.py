@@ -6,7 +6,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 import fcntl
+import os
 from pathlib import Path
+import pickle
 import shutil
 import sys
 
@@ -102,17 +104,30 @@ def test_workspace_built(tmp_path_factory) -> BuiltWorkspace:
         return build_workspace(TEST_WORKSPACE / 'src', tmp_path_factory.mktemp('test_ws'))
     bases = workspace.bases_of(distribution)
     (TEST_WORKSPACE / bases.build).mkdir(exist_ok=True)
+    # under pytest-xdist (make test), the workers of one run build it once: the first
+    # to take the lock builds, the others read what it built (a build of the others
+    # would rewrite what colcon rewrites on every build under the first one's nodes)
+    run = os.environ.get('PYTEST_XDIST_TESTRUNUID')
+    session = TEST_WORKSPACE / bases.build / '.tests-session.pickle'
     with open(TEST_WORKSPACE / bases.build / '.tests.lock', 'w') as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
+        if run and session.is_file():
+            earlier_run, built = pickle.loads(session.read_bytes())
+            if earlier_run == run:
+                return built
         before = mtimes(TEST_WORKSPACE, bases.build, bases.install)
         result = colcon(bases.command('build', '--event-handlers', 'console_cohesion+'),
                         cwd=TEST_WORKSPACE)
         after = mtimes(TEST_WORKSPACE, bases.build, bases.install)
-    output = result.stdout + result.stderr
-    assert result.returncode == 0, f'colcon build failed:\n{output}'
-    # a build over an earlier one: tests/test_rebuild.py reads what it rewrote
-    earlier = any(n.startswith(f'{bases.install}/') for n in before)
-    return BuiltWorkspace(TEST_WORKSPACE, output, bases, (before, after) if earlier else None)
+        output = result.stdout + result.stderr
+        assert result.returncode == 0, f'colcon build failed:\n{output}'
+        # a build over an earlier one: tests/test_rebuild.py reads what it rewrote
+        earlier = any(n.startswith(f'{bases.install}/') for n in before)
+        built = BuiltWorkspace(TEST_WORKSPACE, output, bases,
+                               (before, after) if earlier else None)
+        if run:
+            session.write_bytes(pickle.dumps((run, built)))
+    return built
 
 
 def mtimes(root: Path, *bases: str) -> dict[str, int]:

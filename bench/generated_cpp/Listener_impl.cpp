@@ -32,7 +32,10 @@ void Listener_impl::fSetUp()
 void Listener_impl::fReceive(const std_msgs::msg::Header & commobj)
 {
   const int64_t now = now_ns();
-  first_ = first_ ? first_ : now;
+  if (!first_) {
+    first_ = now;
+    std::cout << "BENCH listener first" << std::endl;
+  }
   if (now - first_ < warmup_ns_) {
     return;
   }

@@ -210,7 +210,10 @@ private:
       return;
     }
     const int64_t now = now_ns();
-    first_ = first_ ? first_ : now;
+    if (!first_) {
+      first_ = now;
+      std::cout << "BENCH listener first" << std::endl;
+    }
     if (now - first_ < warmup_ns_) {
       return;
     }
