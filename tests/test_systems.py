@@ -468,10 +468,18 @@ def test_the_description_holds_the_values_and_periods_of_the_model():
 
 
 def test_bringup_json_declares_a_mapped_parameter_per_entry(generated):
-    """The offline check of parameter files sees elbow.amplitude, not amplitude."""
+    """The offline check of parameter files sees elbow.amplitude, not amplitude.
+
+    And amplitude once more as a template (origin ``mapped``), for a file that
+    sets joint_names itself.
+    """
     description = json.loads((generated / 'dummy_robot_bringup' / 'bringup.json').read_text())
     [joints] = [i for i in description['instances'] if i['instance'] == 'joints']
-    declared = {d['name']: d for d in joints['declared']}
+    declared = {d['name']: d for d in joints['declared'] if d['origin'] != 'mapped'}
     assert 'amplitude' not in declared
     assert declared['shoulder.amplitude']['range'] == [0.0, 3.0, 0.0]
     assert declared['elbow.amplitude']['type'] == 'double'
+    assert declared['elbow.amplitude']['for_each'] == 'joint_names'
+    [template] = [d for d in joints['declared'] if d['origin'] == 'mapped']
+    assert (template['name'], template['for_each'], template['range']) == \
+        ('amplitude', 'joint_names', [0.0, 3.0, 0.0])

@@ -19,7 +19,7 @@ from colcon_robmosys.mapping.names import connection_name
 from colcon_robmosys.mapping.parameters import NODE_PARAMETERS
 from colcon_robmosys.mapping.portkinds import Entity, port_kind
 from colcon_robmosys.model.parameters import node_parameters
-from colcon_robmosys.model.types import Component, Instance
+from colcon_robmosys.model.types import Component, Instance, Parameter
 
 #: ROS 2's QoS overrides of a publisher or a subscription, as the runtime's ports
 #: declare them (read-only, ``qos_overrides.<topic>.<entity>.<policy>``): policy ->
@@ -53,7 +53,8 @@ class DeclaredParameter:
     name: str
     type: str
     #: 'model' (the component's), 'node' (every ROS 2 node's), 'qos' (a port's QoS
-    #: override) or 'announced' (what the node says of itself: never from a file)
+    #: override), 'announced' (what the node says of itself: never from a file) or
+    #: 'mapped' (a mapped parameter's template: ``for_each``)
     origin: str
     read_only: bool = False
     #: (from, to, step)
@@ -61,14 +62,20 @@ class DeclaredParameter:
     one_of: tuple[Any, ...] | None = None
     #: (min, max): max None for no bound
     size: tuple[int, int | None] | None = None
+    #: of a mapped parameter (one per entry) and of its template (origin 'mapped', named
+    #: as in the model): the string array whose entries it is repeated for
+    for_each: str | None = None
 
     def as_json(self) -> dict[str, Any]:
         """Return it as bringup.json holds it."""
-        return {'name': self.name, 'type': self.type, 'origin': self.origin,
+        held = {'name': self.name, 'type': self.type, 'origin': self.origin,
                 'read_only': self.read_only,
                 'range': list(self.range) if self.range is not None else None,
                 'one_of': list(self.one_of) if self.one_of is not None else None,
                 'size': list(self.size) if self.size is not None else None}
+        if self.for_each is not None:
+            held['for_each'] = self.for_each
+        return held
 
 
 def declared_parameters(instance: Instance, component: Component,
@@ -80,11 +87,12 @@ def declared_parameters(instance: Instance, component: Component,
     the array (``shared``: its values for every instance; the instance's own win).
     """
     values = {**(shared or {}), **dict(instance.parameters)}
-    declared = [DeclaredParameter(
-        name, p.type, 'model', p.read_only,
-        (p.range.start, p.range.end, p.range.step) if p.range is not None else None,
-        p.one_of, (p.size.min, p.size.max) if p.size is not None else None)
-        for name, p in node_parameters(component.parameters, values).items()]
+    declared = [_declared(name, p, 'model')
+                for name, p in node_parameters(component.parameters, values).items()]
+    # and each mapped parameter once more, as a template: a parameter file that sets
+    # its array names other entries than the system does (robmosys_runtime.paramcheck)
+    declared += [_declared(p.name, p, 'mapped') for p in component.parameters
+                 if p.for_each is not None]
     declared += [DeclaredParameter(name, type_, 'node')
                  for name, type_ in NODE_PARAMETERS.items()]
     declared += [DeclaredParameter(name, type_, 'node', True)
@@ -105,3 +113,13 @@ def declared_parameters(instance: Instance, component: Component,
                  for name, type_ in ANNOUNCED.items()
                  if name != 'robmosys.ports' or component.ports]
     return tuple(declared)
+
+
+def _declared(name: str, parameter: Parameter, origin: str) -> DeclaredParameter:
+    return DeclaredParameter(
+        name, parameter.type, origin, parameter.read_only,
+        (parameter.range.start, parameter.range.end, parameter.range.step)
+        if parameter.range is not None else None,
+        parameter.one_of,
+        (parameter.size.min, parameter.size.max) if parameter.size is not None else None,
+        parameter.for_each)

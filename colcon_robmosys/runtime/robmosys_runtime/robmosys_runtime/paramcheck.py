@@ -55,7 +55,12 @@ class SystemParameters:
         prefix = '/' + namespace.strip('/') if namespace.strip('/') else ''
         #: fully qualified name -> parameter name -> its description
         self.nodes: Dict[str, Dict[str, Dict[str, Any]]] = {
-            prefix + i['fqn']: {d['name']: d for d in i.get('declared', ())}
+            prefix + i['fqn']: {d['name']: d for d in i.get('declared', ())
+                                if d['origin'] != 'mapped'}
+            for i in description['instances']}
+        #: fully qualified name -> the templates of its mapped parameters
+        self.mapped: Dict[str, List[Dict[str, Any]]] = {
+            prefix + i['fqn']: [d for d in i.get('declared', ()) if d['origin'] == 'mapped']
             for i in description['instances']}
 
     def check(self, text: str, *, running: bool = False) -> List[Problem]:
@@ -67,30 +72,69 @@ class SystemParameters:
         """
         read = read_text(text)
         problems = list(read.problems)
+        nodes = self._with_arrays_of(read.entries)
         for entry in read.entries:
-            problems += self._entry_problems(entry, running)
+            problems += self._entry_problems(entry, nodes, running)
         return sorted(set(problems), key=lambda p: (p.line, p.column, p.message))
 
-    def _entry_problems(self, entry: NodeEntry, running: bool) -> List[Problem]:
-        matched = [fqn for fqn in self.nodes if node_matches(entry.name, fqn)]
+    def _with_arrays_of(self, entries: Sequence[NodeEntry]
+                        ) -> Dict[str, Dict[str, Dict[str, Any]]]:
+        """
+        Return the nodes' parameters as a file leaves them: mapped ones by its arrays.
+
+        A file that sets the array of a mapped parameter (its last value for a node
+        wins, as the node reads its overrides) makes the node declare the parameter
+        for the file's entries instead of the system's: ``joints: [a, b]`` and then
+        ``a.gain`` and ``b.gain``.
+        """
+        arrays: Dict[str, Dict[str, List[str]]] = {}
+        for entry in entries:
+            for fqn, templates in self.mapped.items():
+                if not templates or not node_matches(entry.name, fqn):
+                    continue
+                names = {t['for_each'] for t in templates}
+                for value in entry.values:
+                    if value.name in names and isinstance(value.value, list) and \
+                            all(isinstance(v, str) for v in value.value):
+                        arrays.setdefault(fqn, {})[value.name] = value.value
+        if not arrays:
+            return self.nodes
+        nodes = dict(self.nodes)
+        for fqn, values in arrays.items():
+            declared = dict(nodes[fqn])
+            for name in [n for n, d in declared.items() if d.get('for_each') in values]:
+                del declared[name]
+            for template in self.mapped[fqn]:
+                if template['for_each'] not in values:
+                    continue
+                *groups, leaf = template['name'].split('.')
+                for item in values[template['for_each']]:
+                    name = '.'.join([*groups, item, leaf])
+                    declared[name] = {**template, 'name': name, 'origin': 'model'}
+            nodes[fqn] = declared
+        return nodes
+
+    def _entry_problems(self, entry: NodeEntry, nodes: Dict[str, Dict[str, Dict[str, Any]]],
+                        running: bool) -> List[Problem]:
+        matched = [fqn for fqn in nodes if node_matches(entry.name, fqn)]
         wildcard = '*' in entry.name
         if not matched:
-            known = _listed(self.nodes)
+            known = _listed(nodes)
             if wildcard:
                 return [Problem(*entry.at, f'{entry.name} matches no node of the system '
                                 f'{self.package!r} (its nodes: {known})')]
             return [Problem(*entry.at, f'the system {self.package!r} has no node '
-                            f'{entry.name}{_did_you_mean(entry.name, self.nodes)} '
+                            f'{entry.name}{_did_you_mean(entry.name, nodes)} '
                             f'(its nodes: {known})')]
         problems: List[Problem] = []
         for value in entry.values:
             having: Dict[str, Dict[str, Any]] = {}
             for fqn in matched:
-                declared = self.declared(fqn, value.name)
+                declared = nodes[fqn].get(value.name)
                 if declared is not None:
                     having[fqn] = declared
             if not having:
-                problems.append(self._unknown(entry, value, matched, wildcard))
+                problems.append(_unknown(nodes, entry, value, matched, wildcard))
                 continue
             # one line per problem, naming every node it is a problem of
             found: Dict[Tuple[int, int, str, str], List[str]] = {}
@@ -102,27 +146,20 @@ class SystemParameters:
                     f"parameter '{value.name}' of {', '.join(fqns)}: {problem}"), severity))
         return problems
 
-    def declared(self, fqn: str, name: str) -> Optional[Dict[str, Any]]:
-        """
-        Return what a node declares of a parameter, None if it does not declare it.
 
-        The one lookup of a name: parameters whose names depend on values (a
-        group per entry of a string array) are to be resolved here.
-        """
-        return self.nodes[fqn].get(name)
 
-    def _unknown(self, entry: NodeEntry, value: FileValue, matched: List[str],
-                 wildcard: bool) -> Problem:
-        names = sorted({n for fqn in matched for n, d in self.nodes[fqn].items()
-                        if d.get('origin') == 'model' or
-                        d.get('origin') == 'node' and not d.get('read_only')})
-        candidates = {n for fqn in matched for n in self.nodes[fqn]}
-        near = _did_you_mean(value.name, candidates)
-        whose = (f'no node that {entry.name} applies to ({_listed(matched)}) has a'
-                 if wildcard else f'node {matched[0]} has no')
-        return Problem(*value.at, f"{whose} parameter '{value.name}'{near} "
-                       f'(its parameters: {_listed(names)})')
 
+def _unknown(nodes: Dict[str, Dict[str, Dict[str, Any]]], entry: NodeEntry, value: FileValue,
+             matched: List[str], wildcard: bool) -> Problem:
+    names = sorted({n for fqn in matched for n, d in nodes[fqn].items()
+                    if d.get('origin') == 'model' or
+                    d.get('origin') == 'node' and not d.get('read_only')})
+    candidates = {n for fqn in matched for n in nodes[fqn]}
+    near = _did_you_mean(value.name, candidates)
+    whose = (f'no node that {entry.name} applies to ({_listed(matched)}) has a'
+             if wildcard else f'node {matched[0]} has no')
+    return Problem(*value.at, f"{whose} parameter '{value.name}'{near} "
+                   f'(its parameters: {_listed(names)})')
 
 def value_problems(value: FileValue, declared: Dict[str, Any], running: bool
                    ) -> List[Tuple[Tuple[int, int], str, str]]:
