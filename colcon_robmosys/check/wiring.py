@@ -7,7 +7,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from colcon_robmosys.check.parameters import everywhere_problems, override_problems
+from colcon_robmosys.check.parameters import (
+    everywhere_problems, override_problems, unset_problems)
 from colcon_robmosys.check.qos import End, QoSRules, with_article as _a
 from colcon_robmosys.errors import Location
 from colcon_robmosys.mapping.names import connection_name, node_name
@@ -54,6 +55,7 @@ class WiringRules(QoSRules):
                            f"'{fqn}' of instance '{node_names[fqn]}'")
             node_names[fqn] = instance.name
             self.diagnostics += override_problems(instance, component)
+            self.diagnostics += unset_problems(system, instance, component)
             self._check_qos_overrides(instance, component)
             for after in instance.after:
                 other = system.instance(after)

@@ -86,6 +86,8 @@ class SpelledParameter:
     #: its ParameterRule as the language fills it (statements or arguments),
     #: none without rules beyond the descriptor
     rule: tuple[str, ...] = ()
+    #: no default: declared without a value, which the node needs to configure
+    required: bool = False
 
 
 @dataclass(frozen=True)
@@ -153,6 +155,11 @@ class ComponentContext:
     def rules(self) -> tuple[SpelledParameter, ...]:
         """Return the parameters with rules beyond their descriptors."""
         return tuple(p for p in self.parameters if p.rule)
+
+    @property
+    def required(self) -> tuple[str, ...]:
+        """Return the names of the parameters without default: the node needs their values."""
+        return tuple(p.name for p in self.parameters if p.required)
 
 
 #: a backend's context class

@@ -111,6 +111,8 @@ class ParameterRow:
     constraints: tuple[str, ...]
     on_change: tuple[str, ...]
     description: str
+    #: no default: a system must set it
+    required: bool = False
 
 
 @dataclass(frozen=True)
@@ -122,12 +124,18 @@ class ParameterPage:
     package: str
     rows: tuple[ParameterRow, ...]
 
+    @property
+    def has_required(self) -> bool:
+        """Tell whether a parameter has no default."""
+        return any(r.required for r in self.rows)
+
 
 def parameter_page(component: Component, banner: Banner) -> ParameterPage | None:
     """Return the documentation page of a component's parameters, None without any."""
     if not component.parameters:
         return None
     return ParameterPage(banner, component.name, component.package, tuple(
-        ParameterRow(p.name, p.type, shown_default(p), p.read_only, tuple(constraints(p)),
-                     p.on_change, p.description)
+        ParameterRow(p.name, p.type, 'none: required' if p.required else shown_default(p),
+                     p.read_only, tuple(constraints(p)),
+                     p.on_change, p.description, p.required)
         for p in component.parameters))

@@ -213,7 +213,8 @@ class ComponentBuilder(BuilderBase):
             self._size(path, name, raw), raw.get('validate'),
             tuple([on_change] if isinstance(on_change, str) else on_change),
             self.at(path + ('validate',)) if 'validate' in raw else None,
-            self.at(path + ('on_change',)) if on_change else None)
+            self.at(path + ('on_change',)) if on_change else None,
+            required='default' not in raw)
         if parameter.read_only and on_change:
             self.error(path + ('on_change',), f"parameter '{name}': 'on_change' has no "
                        'meaning for a read-only parameter: it never changes after start',

@@ -118,6 +118,8 @@ class Parameter:
     #: where ``validate`` and ``on_change`` stand
     validate_location: Location | None = None
     on_change_location: Location | None = None
+    #: no default: a system must set it, and a node without a value does not configure
+    required: bool = False
 
     @property
     def path(self) -> tuple[str, ...]:

@@ -121,6 +121,9 @@ def _node_imports(names: dict[InterfaceRef, str], plan: ComponentPlan,
         _add(modules, 'robmosys_runtime', {'ParameterRule', 'ParameterRules'})
     if plan.parameters:
         _add(modules, 'rcl_interfaces.msg', {'ParameterDescriptor'})
+        if any(p.required for p in plan.parameters):
+            # declared by type, without a value
+            _add(modules, 'rclpy.parameter', {'Parameter'})
         for parameter in plan.parameters:
             if parameter.range is not None:
                 _add(modules, 'rcl_interfaces.msg', {
@@ -252,7 +255,7 @@ def _parameter(parameter: Parameter) -> PyParameter:
         doc=_doc(f'Return the parameter {parameter.name}.',
                  parameter.description),
         read_only=parameter.read_only, range=_range(parameter),
-        attr=parameter.path[-1], rule=_rule(parameter))
+        attr=parameter.path[-1], rule=_rule(parameter), required=parameter.required)
 
 
 def _rule(parameter: Parameter) -> tuple[str, ...]:
