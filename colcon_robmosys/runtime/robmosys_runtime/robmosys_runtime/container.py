@@ -3,7 +3,7 @@
 """
 Several Python instances of a system in one process (``processes: shared``).
 
-``python -m robmosys_runtime.container DESCRIPTION PARAMS_FILE INSTANCE...``
+``python -m robmosys_runtime.container DESCRIPTION PARAMS_FILE INSTANCE... [--ros-args ...]``
 creates the node of each instance from its component's class, with the name,
 namespace, remappings and parameter file the launch files would give it, and
 spins them all on one multi-threaded executor (:func:`run_nodes`). Starting a
@@ -38,7 +38,10 @@ def node_factory(instance: Dict[str, Any], params_file: str) -> Callable[[], Nod
 
 def main(argv: Optional[List[str]] = None) -> int:
     """Run the instances named on the command line; return the exit status."""
-    description_file, params_file, *names = sys.argv[1:] if argv is None else argv
+    args = list(sys.argv[1:] if argv is None else argv)
+    # what follows --ros-args is the process's (--log-level), for rclpy.init
+    ros_arguments = args[args.index('--ros-args'):] if '--ros-args' in args else []
+    description_file, params_file, *names = args[:len(args) - len(ros_arguments)]
     with open(description_file, encoding='utf-8') as stream:
         instances = {i['instance']: i for i in json.load(stream)['instances']}
     unknown = [n for n in names if n not in instances or not instances[n].get('python_class')]
@@ -46,7 +49,8 @@ def main(argv: Optional[List[str]] = None) -> int:
         print(f"container: error: not Python instances of the system: {', '.join(unknown)}"
               if unknown else 'container: error: no instance named', file=sys.stderr)
         return 2
-    return run_nodes([node_factory(instances[n], params_file) for n in names])
+    return run_nodes([node_factory(instances[n], params_file) for n in names],
+                     args=['container', *ros_arguments] if ros_arguments else None)
 
 
 if __name__ == '__main__':
