@@ -122,8 +122,10 @@ def _node_imports(names: dict[InterfaceRef, str], plan: ComponentPlan,
     if plan.parameters:
         _add(modules, 'rcl_interfaces.msg', {'ParameterDescriptor'})
         if any(p.required for p in plan.parameters):
-            # declared by type, without a value
+            # declared by type, without a value, which configure needs
             _add(modules, 'rclpy.parameter', {'Parameter'})
+            _add(modules, 'rclpy.lifecycle', {'LifecycleState', 'TransitionCallbackReturn'})
+            _add(modules, 'robmosys_runtime', {'required_set'})
         for parameter in plan.parameters:
             if parameter.range is not None:
                 _add(modules, 'rcl_interfaces.msg', {

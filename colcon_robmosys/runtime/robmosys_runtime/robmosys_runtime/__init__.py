@@ -21,7 +21,8 @@ if TYPE_CHECKING:
         copy_fields, EventActivation, EventClient, EventServer)
     from robmosys_runtime.main import executor_threads, run  # noqa: F401
     from robmosys_runtime.node import Activity, ComponentNode  # noqa: F401
-    from robmosys_runtime.parameters import ParameterRule, ParameterRules  # noqa: F401
+    from robmosys_runtime.parameters import (  # noqa: F401
+        ParameterRule, ParameterRules, required_set)
     from robmosys_runtime.ports import ActionClientPort, QueryClient, wait_for  # noqa: F401
 
 __version__ = '0.1.0'
@@ -31,7 +32,8 @@ _MODULES = {
     'ActionClientPort': 'ports', 'Activity': 'node', 'ComponentNode': 'node',
     'EventActivation': 'events', 'EventClient': 'events', 'EventServer': 'events',
     'ParameterRule': 'parameters', 'ParameterRules': 'parameters', 'QueryClient': 'ports',
-    'copy_fields': 'events', 'executor_threads': 'main', 'run': 'main', 'wait_for': 'ports',
+    'copy_fields': 'events', 'executor_threads': 'main', 'required_set': 'parameters',
+    'run': 'main', 'wait_for': 'ports',
 }
 
 __all__ = sorted(_MODULES)

@@ -19,7 +19,6 @@ from typing import (
 from rclpy.action import CancelResponse, GoalResponse
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.lifecycle import LifecycleNode, LifecycleState, TransitionCallbackReturn
-from rclpy.parameter import Parameter
 from rclpy.qos import QoSProfile
 from rclpy.timer import Timer
 from robmosys_runtime.announce import announce_component
@@ -55,8 +54,7 @@ class ComponentNode(LifecycleNode):
     def __init__(self, node_name: str, *, ports: Sequence[str] = (),
                  activities: Iterable[str] = (),
                  lifecycle: Optional[Mapping[str, Sequence[Function]]] = None,
-                 component: Optional[str] = None, required: Sequence[str] = (),
-                 **kwargs: Any) -> None:
+                 component: Optional[str] = None, **kwargs: Any) -> None:
         """
         Create the node; nothing of its ports exists before configure.
 
@@ -66,8 +64,6 @@ class ComponentNode(LifecycleNode):
             ``on_activate``, ``on_deactivate``, ``on_cleanup``, ``on_shutdown``,
             ``on_error``), in order
         :param component: a generated component's package, announced with its ports
-        :param required: parameters declared without a value: the node does not
-            configure until each has one, and logs the name of each that has none
         """
         super().__init__(node_name, **kwargs)
         refuse_transitions_after_shutdown(self)
@@ -76,7 +72,6 @@ class ComponentNode(LifecycleNode):
         self._active = False
         self.activities: Dict[str, Activity] = {name: Activity(name) for name in activities}
         self._lifecycle = {key: tuple(functions) for key, functions in (lifecycle or {}).items()}
-        self._required = tuple(required)
         self._ports: List[Tuple[str, Callable[[], object]]] = []
         self._activity_timers: List[Timer] = []
         for name in ports:
@@ -262,14 +257,6 @@ class ComponentNode(LifecycleNode):
 
     def on_configure(self, state: LifecycleState) -> TransitionCallbackReturn:
         """Create the ports and timers, then run the configure functions."""
-        unset = [name for name in self._required
-                 if self.get_parameter_or(name).type_ == Parameter.Type.NOT_SET]
-        for name in unset:
-            self.get_logger().error(
-                f"configure failed: parameter '{name}' has no value (it has no default: set "
-                f'it in a parameter file, or with -p {name}:=<value>)')
-        if unset:
-            return TransitionCallbackReturn.FAILURE
         try:
             self.create_ports()
             self._run_lifecycle('on_configure')

@@ -130,3 +130,13 @@ class ParameterRules:
                 except Exception:  # noqa: B902 - a failing function must not stop the node
                     self._node.get_logger().error(
                         f'on_change of {parameter.name} failed:\n' + traceback.format_exc())
+
+
+def required_set(node: Node, names: Sequence[str]) -> bool:
+    """Tell whether each parameter declared without a value has one; log each that has none."""
+    unset = [n for n in names if node.get_parameter_or(n).type_ == Parameter.Type.NOT_SET]
+    for name in unset:
+        node.get_logger().error(
+            f"configure failed: parameter '{name}' has no value (it has no default: set it in "
+            f'a parameter file, or with -p {name}:=<value>)')
+    return not unset
