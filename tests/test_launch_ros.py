@@ -190,3 +190,72 @@ def test_two_hosts_as_two_launches_in_one_domain(launch_env, hosted_built, domai
             launched.proc.send_signal(signal.SIGINT)
             launched.proc.wait(timeout=30)
         assert 'Traceback' not in manager.output() + robot.output()
+
+
+#: ros2 launch's way with arguments: name:=value, given to the included file
+ARGUMENTS_LAUNCHER = """
+import sys
+from launch import LaunchDescription, LaunchService
+from launch.actions import IncludeLaunchDescription
+from launch.launch_description_sources import PythonLaunchDescriptionSource
+arguments = [tuple(a.split(':=', 1)) for a in sys.argv[2:]]
+service = LaunchService()
+service.include_launch_description(LaunchDescription([IncludeLaunchDescription(
+    PythonLaunchDescriptionSource(sys.argv[1]), launch_arguments=arguments)]))
+sys.exit(service.run())
+"""
+
+#: what ros2 launch --show-args prints: the arguments a launch file declares
+SHOW_ARGS = """
+import sys
+from launch.launch_description_sources import get_launch_description_from_python_launch_file
+description = get_launch_description_from_python_launch_file(sys.argv[1])
+for argument in description.get_launch_arguments():
+    print(f'{argument.name}|{argument.default_value[0].text if argument.default_value else ""}|'
+          f'{argument.description}')
+"""
+
+
+@pytest.mark.parametrize('launch_file', [
+    'pubsub_system.launch.py', 'pubsub_system.nodes.launch.py',
+    'pubsub_system.publisher.launch.py', 'pubsub_system.subscriber.nodes.launch.py'])
+def test_show_args_lists_the_arguments_with_their_descriptions(
+        test_workspace_built, launch_env, launch_file):
+    share = test_workspace_built.share('pubsub_system')
+    shown = __import__('subprocess').run(
+        [sys.executable, '-c', SHOW_ARGS, str(share / 'launch' / launch_file)],
+        env=launch_env, capture_output=True, text=True, timeout=60, check=True).stdout
+    arguments = {line.split('|')[0]: line.split('|')[1:] for line in shown.splitlines()}
+    assert set(arguments) == {'use_sim_time', 'log_level', 'namespace', 'params_file'}, shown
+    assert arguments['log_level'][0] == 'info'
+    assert 'cfg/params.yaml: its values win' in arguments['params_file'][1]
+    assert all(description for _, description in arguments.values()), shown
+
+
+def test_launch_arguments_reach_every_node(test_workspace_built, launch_env, domain_id,
+                                           tmp_path):
+    """use_sim_time, log_level, namespace and the operator's file, through ros2 launch."""
+    from colcon_robmosys.devtools.system import LifecycleDriver
+    operator = tmp_path / 'operator.yaml'
+    operator.write_text('/robot1/publisher:\n  ros__parameters:\n    noOfScans: 7\n')
+    share = test_workspace_built.share('pubsub_system')
+    with background([sys.executable, '-c', ARGUMENTS_LAUNCHER,
+                     str(share / 'launch' / 'pubsub_system.launch.py'), 'use_sim_time:=true',
+                     'log_level:=debug', 'namespace:=robot1', f'params_file:={operator}'],
+                    env=launch_env) as launched, LifecycleDriver(domain_id) as driver:
+        # the manager moved with the system, and brings the moved nodes up
+        assert wait_until(lambda: 'bringup: 2 of 2 managed instances active' in
+                          launched.output(), timeout=60), launched.output()
+        for fqn in ('/robot1/publisher', '/robot1/subscriber'):
+            assert driver.state(fqn) == 'active', fqn
+        # the operator's value wins, the system's others stay
+        assert driver.parameters('/robot1/publisher', ['use_sim_time', 'indoor', 'noOfScans']) \
+            == {'use_sim_time': True, 'indoor': True, 'noOfScans': 7}
+        assert driver.parameters('/robot1/subscriber', ['use_sim_time']) == \
+            {'use_sim_time': True}
+        # the connection moved too: the subscriber is on the publisher's moved topic
+        assert wait_until(lambda: driver.node.count_publishers('/robot1/publisher/pMap') == 1
+                          and driver.node.count_subscribers('/robot1/publisher/pMap') == 1, 10)
+        assert not {('publisher', '/'), ('subscriber', '/')} & set(
+            driver.node.get_node_names_and_namespaces())
+        assert re.search(r'\[DEBUG\].*publisher', launched.output()), launched.output()

@@ -3,7 +3,7 @@
 """
 Several Python instances of a system in one process (``processes: shared``).
 
-``python -m robmosys_runtime.container DESCRIPTION PARAMS_FILE INSTANCE...``
+``python -m robmosys_runtime.container DESCRIPTION PARAMS_FILE INSTANCE... [--ros-args ...]``
 creates the node of each instance from its component's class, with the name,
 namespace, remappings and parameter file the launch files would give it, and
 spins them all on one executor (:func:`run_nodes`): the one the system names for
@@ -39,7 +39,10 @@ def node_factory(instance: Dict[str, Any], params_file: str) -> Callable[[], Nod
 
 def main(argv: Optional[List[str]] = None) -> int:
     """Run the instances named on the command line; return the exit status."""
-    description_file, params_file, *names = sys.argv[1:] if argv is None else argv
+    args = list(sys.argv[1:] if argv is None else argv)
+    # what follows --ros-args is the process's (--log-level), for rclpy.init
+    ros_arguments = args[args.index('--ros-args'):] if '--ros-args' in args else []
+    description_file, params_file, *names = args[:len(args) - len(ros_arguments)]
     with open(description_file, encoding='utf-8') as stream:
         description = json.load(stream)
     instances = {i['instance']: i for i in description['instances']}
@@ -49,7 +52,8 @@ def main(argv: Optional[List[str]] = None) -> int:
               if unknown else 'container: error: no instance named', file=sys.stderr)
         return 2
     return run_nodes([node_factory(instances[n], params_file) for n in names],
-                     executor_name=description.get('executors', {}).get('python'))
+                     executor_name=description.get('executors', {}).get('python'),
+                     args=['container', *ros_arguments] if ros_arguments else None)
 
 
 if __name__ == '__main__':

@@ -180,7 +180,9 @@ class Manager:
     def _load(self, group: str) -> None:
         """Load the C++ instances into their container, in the background."""
         def load() -> None:
-            container = '/' + container_node(self.description['package'])
+            # moved with the system by bringup --namespace
+            container = self.description.get('namespace', '') + '/' + container_node(
+                self.description['package'])
             failed = load_into(self.node, container,
                                [self.instances[n] for n in self.groups[group][0]],
                                self._params_file, self._args.start_timeout)

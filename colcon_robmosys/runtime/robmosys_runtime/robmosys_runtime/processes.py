@@ -219,6 +219,8 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
     if loaded_here:
         needs['rclcpp_components'] = loaded_here
     _check_installed(needs)
+    # what bringup's options give every process (--log-level)
+    ros_arguments = list(description.get('ros_arguments', ()))
     groups: Groups = {}
     together = []
     loaded = []
@@ -229,13 +231,13 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
             loaded.append(instance['instance'])
         else:
             groups[instance['instance']] = (
-                [instance['instance']], command(instance, params_file))
+                [instance['instance']], command(instance, params_file) + ros_arguments)
     if together:
         # one process, not one per CPU: two made 50 nodes up in 1.7 s, one in
         # 1.2 s (each process is a DDS participant the others discover)
         groups['python instances' + (f' on {host}' if host else '')] = (together, [
             sys.executable, '-m', 'robmosys_runtime.container', description_file,
-            params_file, *together])
+            params_file, *together] + (['--ros-args', *ros_arguments] if ros_arguments else []))
     if loaded:
         # rclcpp_components' container of the system's executor; the manager loads the nodes
         executor = description.get('executors', {}).get('cpp', 'multi-threaded')
@@ -248,5 +250,11 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
             container = os.path.join(folder, CONTAINERS['single-threaded'])
         groups[CPP_GROUP] = (loaded, [
             container,
-            '--ros-args', '-r', f"__node:={container_node(description['package'])}"])
+            '--ros-args', '-r', f"__node:={container_node(description['package'])}",
+            *_container_namespace(description), *ros_arguments])
     return groups
+
+
+def _container_namespace(description: Dict[str, Any]) -> List[str]:
+    """Return the remapping that moves the C++ container with its system (bringup --namespace)."""
+    return ['-r', f"__ns:={description['namespace']}"] if description.get('namespace') else []
