@@ -20,6 +20,7 @@ import time
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from ament_index_python.packages import get_package_prefix, PackageNotFoundError
+from robmosys_runtime.output import say
 
 #: seconds each process has to end after SIGINT, before SIGKILL
 STOP_TIMEOUT = 10.0
@@ -91,10 +92,12 @@ class Processes:
                 except ProcessLookupError:
                     pass
         deadline = time.monotonic() + timeout
-        for process in self._processes.values():
+        for name, process in self._processes.items():
             try:
                 process.wait(max(0.0, deadline - time.monotonic()))
             except subprocess.TimeoutExpired:
+                # never expected: a process ends within a few seconds of SIGINT
+                say('error', f'{name} did not end within {timeout:g} s of SIGINT: SIGKILL')
                 self.kill()
 
     def kill(self) -> None:
