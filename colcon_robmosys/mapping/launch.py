@@ -5,6 +5,7 @@
 
 from __future__ import annotations
 
+from collections import Counter
 from dataclasses import dataclass, replace
 
 from colcon_robmosys.mapping.common import Banner, unique
@@ -14,6 +15,19 @@ from colcon_robmosys.model.types import System
 PARAMS_FILE = 'cfg/params.yaml'
 #: where it installs what ``bringup`` and the shared Python process read
 DESCRIPTION_FILE = 'bringup.json'
+#: a system that does not say ``processes`` shares them from this many instances on
+#: one host: one process per instance, 20 Python instances came up through
+#: ``ros2 launch`` in 1 run of 3 and through ``bringup`` in 8.9x the time of one
+#: (issue 28, docs/performance.md); the systems below keep a process per instance
+SHARED_FROM = 20
+
+
+def process_layout(system: System) -> str:
+    """Return how a system runs its instances: what it says, or by its size."""
+    if system.processes:
+        return system.processes
+    on_one_host = Counter(i.host for i in system.instances).values()
+    return 'shared' if max(on_one_host, default=0) >= SHARED_FROM else 'per_instance'
 
 
 @dataclass(frozen=True)
@@ -217,6 +231,6 @@ def launch_files(system: System, nodes: tuple[SystemNode, ...],
         # alone needs none), C++ ones a container on the manager's host only
         files.append(LaunchFile(suffix, banner, system.package, PARAMS_FILE,
                                 waiting(selected), what, waiting(elsewhere),
-                                shared=system.processes == 'shared' and len(selected) > 1,
+                                shared=process_layout(system) == 'shared' and len(selected) > 1,
                                 containers=not suffix))
     return tuple(files)

@@ -17,7 +17,7 @@ from colcon_robmosys.mapping.conformance import watched_instances, WatchedInstan
 from colcon_robmosys.mapping.connections import (
     connection_topics, node_fqn, provided_end, system_connections, SystemConnection)
 from colcon_robmosys.mapping.launch import (
-    launch_files, LaunchFile, PARAMS_FILE, SystemNode)
+    launch_files, LaunchFile, PARAMS_FILE, process_layout, SystemNode)
 from colcon_robmosys.mapping.names import connection_name
 from colcon_robmosys.mapping.parameters import NODE_PARAMETERS
 from colcon_robmosys.mapping.portkinds import port_kind
@@ -86,7 +86,8 @@ class SystemPackage:
     exec_depends: tuple[str, ...]
     package_xml: PackageXml
     connections: tuple[SystemConnection, ...] = ()
-    #: 'per_instance', or 'shared': bringup runs the Python instances of a host in one process
+    #: 'per_instance', or 'shared': the Python instances of a host in one process, the C++
+    #: ones of the manager's host in a component container (bringup and the launch files)
     processes: str = 'per_instance'
     #: per instance, in model order: what the system manager's watch compares
     watched: tuple[WatchedInstance, ...] = ()
@@ -307,7 +308,7 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
         instances=_instances(system, components),
         edges=_edges(system, components, topics),
         connections=system_connections(system, components, topics),
-        processes=system.processes,
+        processes=process_layout(system),
         watched=watched_instances(system, components, topics),
         model_files=tuple(sorted(_installed_models(workspace).items())),
         depends=packages, exec_depends=exec_depends,
