@@ -9,6 +9,7 @@ tests skip, and tests/test_systems.py checks the launch files by reading them.
 from __future__ import annotations
 
 import contextlib
+from pathlib import Path
 import re
 import shutil
 import signal
@@ -190,3 +191,47 @@ def test_two_hosts_as_two_launches_in_one_domain(launch_env, hosted_built, domai
             launched.proc.send_signal(signal.SIGINT)
             launched.proc.wait(timeout=30)
         assert 'Traceback' not in manager.output() + robot.output()
+
+
+@pytest.fixture(scope='module')
+def crowd_launched_built(tmp_path_factory) -> BuiltWorkspace:
+    """Return crowd_system: 20 instances (shared by default), a C++ pair among them."""
+    from test_process_layout import build_crowd
+    probe = __import__('subprocess').run([sys.executable, '-c', 'import launch_ros'],
+                                         capture_output=True, timeout=60)
+    if probe.returncode != 0:
+        pytest.skip('launch_ros is not installed (it is not on PyPI): '
+                    'test_process_layout.py reads the launch files')
+    return build_crowd(tmp_path_factory.mktemp('crowd_launched'), 20, cpp=True)
+
+
+def test_a_shared_system_comes_up_through_its_launch_file_and_ctrl_c_ends_it_in_bounds(
+        crowd_launched_built, domain_id):
+    """<system>.launch.py runs the Python instances in one process, the C++ in a container.
+
+    Ctrl-C ends every process within 5 s, beside another launched system, and
+    launch never escalates to SIGTERM or SIGKILL.
+    """
+    from test_process_layout import (
+        CTRL_C_BOUND, ctrl_c, loaded_machine, marked_env, MARKER, processes_marked)
+    env = marked_env(crowd_launched_built, domain_id)
+    launch = crowd_launched_built.share('crowd_system') / 'launch' / 'crowd_system.launch.py'
+    command = [sys.executable, '-c', LAUNCHER, str(launch)]
+    with loaded_machine(command, env), background(command, env=env, stop_timeout=30) as run:
+        assert wait_until(lambda: 'bringup: 20 of 20 managed instances active' in
+                          run.output(), timeout=180), run.output()
+        # Python -> Python and C++ -> C++, every subscriber
+        assert wait_until(lambda: len(set(re.findall(r'\[(sub_\w+)[.\]].*got map data',
+                                                     run.output()))) == 10, timeout=60), \
+            run.output()
+        marked = processes_marked(env[MARKER])
+        commands = [(Path('/proc') / str(p) / 'cmdline').read_bytes() for p in marked]
+        assert sum(b'robmosys_runtime.container' in c for c in commands) == 1, commands
+        assert sum(b'__node:=crowd_system_container' in c for c in commands) == 1, commands
+        # the launch, the Python instances, the container, the manager
+        assert len(marked) == 4, commands
+        took, output = ctrl_c(run, env[MARKER])
+        assert run.proc.wait(timeout=1) == 0, output
+    assert took <= CTRL_C_BOUND, f'{took:.2f} s:\n{output}'
+    assert 'escalating' not in output and 'SIGKILL' not in output, output
+    assert 'Traceback' not in output, output
