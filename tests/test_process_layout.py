@@ -87,12 +87,15 @@ def test_a_shared_system_starts_processes_as_bringup_does(tmp_path):
         # no instance in a process of its own
         assert read_launch_file(launch, out) == []
         [shared] = _calls(launch, 'ExecuteProcess')
-        cmd = next(k.value for k in shared.keywords if k.arg == 'cmd')
-        # python -m robmosys_runtime.container DESCRIPTION PARAMS INSTANCE...: bringup's
-        assert [ast.unparse(e) for e in cmd.elts[:5]] == [
-            'sys.executable', "'-m'", "'robmosys_runtime.container'", 'description_file',
-            'params_file']
-        assert [ast.literal_eval(e) for e in cmd.elts[5:]] == python
+        cmd = [ast.unparse(e) for e in next(k.value for k in shared.keywords
+                                            if k.arg == 'cmd').elts]
+        # python -m robmosys_runtime.container [--activate] DESCRIPTION PARAMS INSTANCE...,
+        # as bringup; the file with the manager has the process bring up what it can
+        assert ("'--activate'" in cmd) == (name == 'crowd_system.launch.py')
+        cmd = [c for c in cmd if c != "'--activate'"]
+        assert cmd[:5] == ['sys.executable', "'-m'", "'robmosys_runtime.container'",
+                           'description_file', 'params_file']
+        assert [ast.literal_eval(e) for e in cmd[5:]] == python
         [container] = _calls(launch, 'ComposableNodeContainer')
         assert "name='crowd_system_container'" in ast.unparse(container)
         loaded = {ast.literal_eval(next(k.value for k in c.keywords if k.arg == 'name'))
@@ -185,6 +188,8 @@ def test_ctrl_c_of_bringup_ends_20_shared_instances_within_bounds_under_load(
                           run.output(), timeout=180), run.output()
         assert wait_until(lambda: len(re.findall(r'got map data', run.output())) >= 10,
                           timeout=30), run.output()
+        # the process brought its instances up itself: the manager found them active
+        assert not re.search(r'instance \w+ is active', run.output()), run.output()
         # one process for the twenty nodes, beside bringup
         assert [p for p in processes_marked(env[MARKER])
                 if b'robmosys_runtime.container' in Path(f'/proc/{p}/cmdline').read_bytes()]

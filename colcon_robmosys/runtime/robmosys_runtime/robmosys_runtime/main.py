@@ -70,13 +70,15 @@ def run(node_factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
 
 
 def run_nodes(node_factories: Sequence[Callable[[], Node]],
-              args: Optional[List[str]] = None) -> int:
+              args: Optional[List[str]] = None,
+              before_spin: Optional[Callable[[List[Node]], None]] = None) -> int:
     """
     Spin several nodes in one process until SIGINT or SIGTERM, then shut down cleanly.
 
     Every node has the threads it would have in a process of its own (see
     :func:`executor_threads`), so a blocking call of one cannot starve the
-    others. Return the exit status (0).
+    others. ``before_spin(nodes)`` runs once they are made, before any
+    callback does. Return the exit status (0).
     """
     signal.signal(signal.SIGINT, _interrupted)
     rclpy.init(args=args)
@@ -85,6 +87,8 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     # first nodes of a 50-node process came up later, not sooner (each node
     # added woke the executor to gather every entity again, under the GIL)
     nodes = [factory() for factory in node_factories]
+    if before_spin is not None:
+        before_spin(nodes)
     executor = MultiThreadedExecutor(num_threads=executor_threads(nodes))
     for node in nodes:
         executor.add_node(node)

@@ -200,9 +200,11 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
     if together:
         # one process, not one per CPU: two made 50 nodes up in 1.7 s, one in
         # 1.2 s (each process is a DDS participant the others discover)
+        # on the manager's host, the process brings up what it can by itself
+        # (robmosys_runtime.container); the manager finds those active
         groups['python instances' + (f' on {host}' if host else '')] = (together, [
-            sys.executable, '-m', 'robmosys_runtime.container', description_file,
-            params_file, *together])
+            sys.executable, '-m', 'robmosys_runtime.container',
+            *([] if host else ['--activate']), description_file, params_file, *together])
     if loaded:
         # rclcpp_components' multi-threaded container; the manager loads the nodes
         groups[CPP_GROUP] = (loaded, [
