@@ -116,9 +116,9 @@ def write_workspace(src: Path, sizes: Sequence[int], cpp_sizes: Sequence[int] = 
         path.parent.mkdir(parents=True)
         path.write_text(yaml.safe_dump({'robmosys': 1, 'defaults': METADATA,
                                         'components': [model]}, sort_keys=False))
-    systems = [_system(s, False) for s in ['beat', 'hear', *sorted(set(sizes))]]
-    if cpp_sizes:
-        systems += [_system(s, True) for s in ['beat', 'hear', *sorted(set(cpp_sizes))]]
+    python: list[int | str] = ['beat', 'hear', *sorted(set(sizes))]
+    cpp: list[int | str] = ['beat', 'hear', *sorted(set(cpp_sizes))] if cpp_sizes else []
+    systems = [_system(s, False) for s in python] + [_system(s, True) for s in cpp]
     path = src / 'bench_systems' / 'robmosys.yaml'
     path.parent.mkdir(parents=True)
     path.write_text(yaml.safe_dump({'robmosys': 1, 'defaults': METADATA,
@@ -420,8 +420,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             if args.hang_runs:
                 print(f'goal: 0 hangs in {args.hang_runs} bring-ups in a row through {path}: '
                       f'{verdict(outcomes["up"] == args.hang_runs)}')
-        for path, ended in stops.items():
-            measured = [e for e in ended if e == e]
+        for path, durations in stops.items():
+            measured = [e for e in durations if e == e]
             if measured:
                 print(f'goal: Ctrl-C through {path} ends every process within {GOAL_CTRL_C:g} '
                       f's: slowest {max(measured):.2f} s of {len(measured)}: '
@@ -441,10 +441,11 @@ def print_table(cases: Cases, times: dict[tuple[str, str, str], list[float]]) ->
         cpp = 'C++' in case[0]
         singles = [fastest(c) for c in cases if c[0].startswith('single')
                    and ('C++' in c[0]) == cpp and c[1] == case[1]]
+        reference = max((s for s in singles if s is not None), default=None)
         size = case[0].split(' ')[0]
         base = fastest((f'{size} instances', 'no path', FLOOR_LAYOUT))
         rows.append((*case, len(times[case]), f'{took:.2f}' if took else '-',
-                     ratio(took, max(singles)) if took and singles and None not in singles
+                     ratio(took, reference) if took and reference and None not in singles
                      else '-',
                      ratio(took, base) if took and base and not cpp else '-'))
     print('time to all-active / the slowest single instance of the same path / the floor')

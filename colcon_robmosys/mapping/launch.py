@@ -149,7 +149,7 @@ class LaunchFile:
 
     @property
     def container(self) -> str:
-        """Return the node name of the component container (bringup's, container_node)."""
+        """Return the node name of the component container, as bringup names it."""
         return f'{self.package}_container'
 
     @property
