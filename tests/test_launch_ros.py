@@ -9,6 +9,7 @@ tests skip, and tests/test_systems.py checks the launch files by reading them.
 from __future__ import annotations
 
 import contextlib
+from pathlib import Path
 import re
 import shutil
 import signal
@@ -259,3 +260,60 @@ def test_launch_arguments_reach_every_node(test_workspace_built, launch_env, dom
         assert not {('publisher', '/'), ('subscriber', '/')} & set(
             driver.node.get_node_names_and_namespaces())
         assert re.search(r'\[DEBUG\].*publisher', launched.output()), launched.output()
+
+
+@pytest.fixture(scope='module')
+def crowd_launched_built(tmp_path_factory) -> BuiltWorkspace:
+    """Return crowd_system: 20 instances (shared by default), a C++ pair among them."""
+    from test_process_layout import build_crowd
+    probe = __import__('subprocess').run([sys.executable, '-c', 'import launch_ros'],
+                                         capture_output=True, timeout=60)
+    if probe.returncode != 0:
+        pytest.skip('launch_ros is not installed (it is not on PyPI): '
+                    'test_process_layout.py reads the launch files')
+    return build_crowd(tmp_path_factory.mktemp('crowd_launched'), 20, cpp=True)
+
+
+def test_a_shared_system_comes_up_through_its_launch_file_and_ctrl_c_ends_it_in_bounds(
+        crowd_launched_built, domain_id, tmp_path):
+    """<system>.launch.py runs the Python instances in one process, the C++ in a container.
+
+    The launch arguments reach the nodes of both as they reach a node of its
+    own (here namespace and an operator's file). Ctrl-C ends every process
+    within 5 s, beside another launched system, and launch never escalates to
+    SIGTERM or SIGKILL.
+    """
+    from colcon_robmosys.devtools.system import LifecycleDriver
+    from test_process_layout import (
+        CTRL_C_BOUND, ctrl_c, loaded_machine, marked_env, MARKER, processes_marked)
+    operator = tmp_path / 'operator.yaml'
+    operator.write_text('/robot1/pub_0:\n  ros__parameters:\n    noOfScans: 7\n'
+                        '/robot1/pub_cpp:\n  ros__parameters:\n    noOfScans: 8\n')
+    env = marked_env(crowd_launched_built, domain_id)
+    launch = crowd_launched_built.share('crowd_system') / 'launch' / 'crowd_system.launch.py'
+    command = [sys.executable, '-c', ARGUMENTS_LAUNCHER, str(launch), 'namespace:=robot1',
+               f'params_file:={operator}']
+    with loaded_machine(command, env), background(command, env=env, stop_timeout=30) as run:
+        assert wait_until(lambda: 'bringup: 20 of 20 managed instances active' in
+                          run.output(), timeout=180), run.output()
+        # Python -> Python and C++ -> C++, every subscriber
+        assert wait_until(lambda: len(set(re.findall(r'[\[.](sub_\w+)[.\]].*got map data',
+                                                     run.output()))) == 10, timeout=60), \
+            run.output()
+        # moved into the namespace, the operator's values theirs: in the shared Python
+        # process and in the container alike
+        with LifecycleDriver(domain_id) as driver:
+            for fqn, scans in (('/robot1/pub_0', 7), ('/robot1/pub_cpp', 8)):
+                assert driver.state(fqn) == 'active', fqn
+                assert driver.parameters(fqn, ['noOfScans']) == {'noOfScans': scans}, fqn
+        marked = processes_marked(env[MARKER])
+        commands = [(Path('/proc') / str(p) / 'cmdline').read_bytes() for p in marked]
+        assert sum(b'robmosys_runtime.container' in c for c in commands) == 1, commands
+        assert sum(b'__node:=crowd_system_container' in c for c in commands) == 1, commands
+        # the launch, the Python instances, the container, the manager
+        assert len(marked) == 4, commands
+        took, output = ctrl_c(run, env[MARKER])
+        assert run.proc.wait(timeout=1) == 0, output
+    assert took <= CTRL_C_BOUND, f'{took:.2f} s:\n{output}'
+    assert 'escalating' not in output and 'SIGKILL' not in output, output
+    assert 'Traceback' not in output, output

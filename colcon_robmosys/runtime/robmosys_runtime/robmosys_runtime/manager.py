@@ -306,6 +306,9 @@ class Manager:
         if self.stopping.wait(self._args.respawn_delay):
             return
         names, args = self.groups[group]
+        if not self.up:
+            # brought down by an operator: the shared process is not to bring itself up
+            args = [a for a in args if a != '--activate']
         self.processes.start(group, args)
         if group == CPP_GROUP:
             self._load(group)
