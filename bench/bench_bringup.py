@@ -1,27 +1,31 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
-"""Benchmark 4: how long a system takes to come up, against its slowest single instance.
+"""Benchmark 4 (P5): how long a system takes to come up, against its slowest single instance.
 
-Builds one system of Python components with colcon in a temporary workspace:
-``--sizes`` (largest) instances, half of them publishers at 10 Hz, half
-subscribers, wired in pairs. ``ros2 run <system> bringup`` (the system manager of
-robmosys_runtime) then brings up, in alternation and in the same run:
+Builds, with colcon in a temporary workspace, two Python components (a
+publisher at 10 Hz, a subscriber) and systems of them wired in pairs, every
+one ``processes: shared``: one instance of each alone, and one system per size
+of ``--sizes``. Each is brought up, in alternation and in the same run, through
+each path of ``--paths``:
 
-- each single instance alone (a publisher, a subscriber): the slowest of them is
-  the reference, what a bring-up can at best cost;
-- the first N instances of the system, for each N of ``--sizes``, with one process
-  per instance and with the Python instances sharing one process
-  (``processes: shared``).
+- ``bringup``: ``ros2 run <system> bringup``, in each layout of ``--layouts``
+  (``--shared``, ``--per-instance``);
+- ``launch``: ``ros2 launch <system> <system>.launch.py`` (launch_ros's
+  LaunchService, as ``ros2 launch`` runs it; launch_ros is not on PyPI: the
+  path is skipped, visibly, where it is not installed).
 
-Each time is from the start of ``bringup`` to its report that every managed
-instance is active. Prints each time / the slowest single instance's, the
-ratio issue 16 and issue 14 set the goal for (within 1.5x at 20 and at 50).
-In the same rounds, the floor of each size (``bringup_floor.py``): the same
-nodes made and activated in one process by rclpy's own transitions, with no
-manager, no service and no discovery, from the start of that process; each
-bring-up is also printed against it, which is what the manager adds.
-Then ``--hang-runs`` bring-ups in a row of the system of ``--hang-size`` instances,
-each with a timeout: how many came up, failed, or hung.
+Each time is from the start of the command to the system manager's report
+that every managed instance is active; then Ctrl-C (SIGINT to the command's
+process group, as a terminal sends it) and the seconds until every process
+ended. Prints each time / the slowest single instance's through the same path
+(goal: at most 1.5x at 20 and at 50) and / the floor (``bringup_floor.py``: the
+same nodes made and activated in one process by rclpy's own transitions, no
+manager; goal: the manager adds at most 1.15x). Then ``--hang-runs`` bring-ups
+in a row of the system of ``--hang-size`` instances through each path: how many
+came up, failed, hung, or needed more than SIGINT to end. With ``--cpp`` (a
+prefix with rclcpp_components), the same with C++ components: the largest
+system in the component container against the slowest single C++ instance.
+Each goal is printed "met" or "NOT met".
 
     make bench-bringup                    # or: .venv/bin/python bench/bench_bringup.py
 """
@@ -41,15 +45,30 @@ from typing import IO, Sequence
 
 import yaml
 
-from bench_runtime import build
+from bench_runtime import build, cpp_skip_reason
 from benchlib import best, print_end, print_machine, ratio, spread, table
 from colcon_robmosys.devtools import ros_env
 
-SYSTEM = 'bench_bringup_system'
 #: makes and activates a system's nodes in one process, with no manager
 FLOOR = Path(__file__).resolve().parent / 'bringup_floor.py'
 #: the "processes" of the floor's cases
 FLOOR_LAYOUT = 'one, no manager (floor)'
+#: what ``ros2 launch <file>`` does (ros2cli is not on PyPI either)
+LAUNCHER = """
+import sys
+from launch import LaunchDescription, LaunchService
+from launch.actions import IncludeLaunchDescription
+from launch.launch_description_sources import PythonLaunchDescriptionSource
+service = LaunchService(argv=sys.argv[2:])
+service.include_launch_description(LaunchDescription([
+    IncludeLaunchDescription(PythonLaunchDescriptionSource(sys.argv[1]))]))
+sys.exit(service.run())
+"""
+#: the goals of issue 28 (P5)
+GOAL_SINGLE = 1.5
+GOAL_FLOOR = 1.15
+#: seconds Ctrl-C may take to end every process (issue 28), with no SIGKILL
+GOAL_CTRL_C = 5.0
 METADATA = {'license': 'Apache-2.0',
             'maintainers': [{'name': 'Benchmark Team', 'email': 'bench@example.com'}]}
 BEAT = {
@@ -64,86 +83,145 @@ HEAR = {
     'activities': {'Receive': {'trigger': 'rBeat', 'functions': ['fReceive']}},
     'functions': {'fReceive': {'code': 'self.heard = getattr(self, "heard", 0) + 1\n'}},
 }
+CBEAT = {**BEAT, 'package': 'bench_cbeat', 'language': 'cpp', 'functions': {'fPublish': {
+    'code': 'std_msgs::msg::Header beat;\nbeat.frame_id = "beat";\npBeat->publish(beat);\n'}}}
+CHEAR = {**HEAR, 'package': 'bench_chear', 'language': 'cpp', 'functions': {'fReceive': {
+    'code': '(void)commobj;\n'}}}
 
 
-def write_workspace(src: Path, instances: int) -> None:
-    """Write the two components and a system of ``instances`` instances (pairs)."""
-    for model in (BEAT, HEAR):
+def system_package(size: int | str, cpp: bool = False) -> str:
+    """Return the package of a system: of ``size`` instances, or one ``beat`` or ``hear``."""
+    return f'bench_{"cpp_" if cpp else ""}system_{size}'
+
+
+def _system(size: int | str, cpp: bool) -> dict[str, object]:
+    beat, hear = ('bench_cbeat', 'bench_chear') if cpp else ('bench_beat', 'bench_hear')
+    if size in ('beat', 'hear'):
+        return {'package': system_package(size, cpp), 'processes': 'shared',
+                'instances': {f'{size}_0': {'component': beat if size == 'beat' else hear}}}
+    pairs = (int(size) + 1) // 2
+    return {
+        'package': system_package(size, cpp), 'processes': 'shared',
+        'instances': {**{f'beat_{i}': {'component': beat} for i in range(pairs)},
+                      **{f'hear_{i}': {'component': hear} for i in range(pairs)}},
+        'connections': [{'from': f'beat_{i}.pBeat', 'to': f'hear_{i}.rBeat'}
+                        for i in range(pairs)]}
+
+
+def write_workspace(src: Path, sizes: Sequence[int], cpp_sizes: Sequence[int] = ()) -> None:
+    """Write the components and the systems: each single instance, each size (pairs)."""
+    models = [BEAT, HEAR] + ([CBEAT, CHEAR] if cpp_sizes else [])
+    for model in models:
         path = src / str(model['package']) / 'robmosys.yaml'
         path.parent.mkdir(parents=True)
         path.write_text(yaml.safe_dump({'robmosys': 1, 'defaults': METADATA,
                                         'components': [model]}, sort_keys=False))
-    pairs = (instances + 1) // 2
-    system = {
-        'package': SYSTEM,
-        'instances': {**{f'beat_{i}': {'component': 'bench_beat'} for i in range(pairs)},
-                      **{f'hear_{i}': {'component': 'bench_hear'} for i in range(pairs)}},
-        'connections': [{'from': f'beat_{i}.pBeat', 'to': f'hear_{i}.rBeat'}
-                        for i in range(pairs)]}
-    path = src / SYSTEM / 'robmosys.yaml'
+    python: list[int | str] = ['beat', 'hear', *sorted(set(sizes))]
+    cpp: list[int | str] = ['beat', 'hear', *sorted(set(cpp_sizes))] if cpp_sizes else []
+    systems = [_system(s, False) for s in python] + [_system(s, True) for s in cpp]
+    path = src / 'bench_systems' / 'robmosys.yaml'
     path.parent.mkdir(parents=True)
     path.write_text(yaml.safe_dump({'robmosys': 1, 'defaults': METADATA,
-                                    'systems': [system]}, sort_keys=False))
+                                    'systems': systems}, sort_keys=False))
 
 
-def subset(install: Path, names: Sequence[str], dest: Path) -> Path:
-    """Write the system's description with some instances only; return its path."""
-    description = json.loads((install / SYSTEM / 'share' / SYSTEM / 'bringup.json').read_text())
-    description['instances'] = [i for i in description['instances'] if i['instance'] in names]
-    description['connections'] = []
-    dest.write_text(json.dumps(description))
-    return dest
+def description_of(install: Path, package: str) -> Path:
+    """Return the installed description (bringup.json) of a system package."""
+    return install / package / 'share' / package / 'bringup.json'
 
 
-def bring_up(install: Path, description: Path, layout: str, count: int,
-             timeout: float) -> tuple[str, float]:
+def bring_up(install: Path, package: str, path: str, layout: str, count: int,
+             timeout: float) -> tuple[str, float, float]:
     """
-    Bring a system up and down once; return the outcome and the seconds it took to come up.
+    Bring a system up and end it with Ctrl-C once; return the outcome and two durations.
 
-    The outcome is ``up``, ``failed`` (bringup reported a failure), ``hung``
-    (no report within timeout: bringup reports by ``--start-timeout`` plus two
-    transition timeouts at the latest) or ``stuck`` (not ended within
-    ``BRING_DOWN_BOUND`` of SIGINT, which bringup's own timeouts bound: the
-    bring-down hung). Whatever a killed bringup left running is killed.
+    ``path`` is ``bringup`` (with ``--<layout>``) or ``launch`` (its
+    ``<system>.launch.py``, the model's layout). The outcome is ``up``,
+    ``failed`` (the manager reported a failure), ``hung`` (no report within
+    timeout: the manager reports by ``--start-timeout`` plus two transition
+    timeouts at the latest), ``stuck`` (not ended within ``BRING_DOWN_BOUND``
+    of SIGINT) or ``killed`` (ended only by a SIGKILL, its own or launch's).
+    The durations: seconds to come up, seconds from SIGINT to every process
+    ended. Whatever a killed run left running is killed.
     """
     env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
-    executable = install / SYSTEM / 'lib' / SYSTEM / 'bringup'
+    # every process of the run inherits it: how they are found, containers included
+    marker = f'{os.getpid()}-{time.monotonic_ns()}'
+    env[MARKER] = marker
+    if path == 'launch':
+        command = [sys.executable, '-c', LAUNCHER,
+                   str(install / package / 'share' / package / 'launch' /
+                       f'{package}.launch.py')]
+    else:
+        command = [sys.executable, str(install / package / 'lib' / package / 'bringup'),
+                   f'--{layout}', '--timeout', '30', '--start-timeout', '90']
     done = f'bringup: {count} of {count} managed instances active'
     with tempfile.TemporaryFile() as log:
         start = time.monotonic()
-        process = subprocess.Popen(
-            [sys.executable, str(executable), '--description', str(description),
-             f'--{layout}', '--timeout', '30', '--start-timeout', '90'],
-            env=env, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-            start_new_session=True)
-        outcome, took = 'hung', timeout
+        process = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT,
+                                   stdin=subprocess.DEVNULL, start_new_session=True)
+        outcome, took, stop = 'hung', timeout, float('nan')
         try:
             outcome, took, _ = _watch(log, process, start, timeout, done,
                                       'managed instances active')
         finally:
             if process.poll() is None:
+                signalled = time.monotonic()
+                # a terminal's Ctrl-C: every process of the foreground group
                 os.killpg(process.pid, signal.SIGINT)
                 try:
-                    # bringup's own bound: deactivate and cleanup (30 s each at
-                    # most), then 10 s for the processes to end
                     process.wait(BRING_DOWN_BOUND)
+                    stop = _ended(marker, signalled)
                 except subprocess.TimeoutExpired:
                     os.killpg(process.pid, signal.SIGKILL)
                     process.wait()
                     outcome = 'stuck'
-            _kill_left_over(install)
-    return outcome, took
+            output = os.pread(log.fileno(), os.fstat(log.fileno()).st_size, 0).decode(
+                errors='replace')
+            if outcome == 'up' and KILLED in output:
+                outcome = 'killed'
+            _kill_left_over(marker)
+    return outcome, took, stop
 
 
-def floor(install: Path, description: Path, count: int, timeout: float) -> tuple[str, float]:
+#: what bringup (robmosys_runtime.processes) and launch print when a process
+#: needed SIGKILL, or launch escalated past SIGINT
+KILLED = 'SIGKILL'
+#: the environment variable that marks the processes of one run
+MARKER = 'ROBMOSYS_BENCH_RUN'
+
+
+def _ended(marker: str, since: float) -> float:
+    """Wait until no process of a run is left; return the seconds since ``since``."""
+    deadline = time.monotonic() + BRING_DOWN_BOUND
+    while time.monotonic() < deadline and _processes_of(marker):
+        time.sleep(0.02)
+    return time.monotonic() - since
+
+
+def _processes_of(marker: str) -> list[int]:
+    """Return the processes of a run: those whose environment holds its marker."""
+    wanted = f'{MARKER}={marker}'.encode()
+    pids = []
+    for entry in Path('/proc').iterdir():
+        if entry.name.isdigit():
+            try:
+                if wanted in (entry / 'environ').read_bytes().split(b'\0'):
+                    pids.append(int(entry.name))
+            except OSError:
+                pass
+    return pids
+
+
+def floor(install: Path, package: str, count: int, timeout: float) -> tuple[str, float]:
     """
     Make and activate a system's nodes with no manager; return the outcome and the seconds.
 
     The time is from the start of the process to its report, as for bring_up.
     """
     env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
-    params = install / SYSTEM / 'share' / SYSTEM / json.loads(description.read_text())[
-        'params_file']
+    description = description_of(install, package)
+    params = description.parent / json.loads(description.read_text())['params_file']
     done = f'floor: {count} of {count} active'
     with tempfile.TemporaryFile() as log:
         start = time.monotonic()
@@ -189,17 +267,79 @@ def _watch(log: IO[bytes], process: subprocess.Popen[bytes], start: float, timeo
 BRING_DOWN_BOUND = 2 * 30 + 10 + 20
 
 
-def _kill_left_over(install: Path) -> None:
-    """Kill the instances a killed bringup left (each runs in a session of its own)."""
-    marker = str(install).encode()
-    for entry in Path('/proc').iterdir():
-        if not entry.name.isdigit():
-            continue
+def _kill_left_over(marker: str) -> None:
+    """Kill what a killed run left (bringup's instances run in sessions of their own)."""
+    for pid in _processes_of(marker):
         try:
-            if marker in (entry / 'cmdline').read_bytes():
-                os.kill(int(entry.name), signal.SIGKILL)
-        except (OSError, ValueError):
+            os.kill(pid, signal.SIGKILL)
+        except OSError:
             pass
+
+
+def launch_skip_reason(install: Path) -> str | None:
+    """Say why the launch path cannot run here, or None when it can."""
+    env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
+    probe = ros_env.run([sys.executable, '-c', 'import launch_ros'], env=env, timeout=60)
+    if probe.returncode == 0:
+        return None
+    return 'launch_ros is not installed (it is not on PyPI): run this on a ROS 2 prefix'
+
+
+#: (system, path, processes): (its package, its managed instances)
+Cases = dict[tuple[str, str, str], tuple[str, int]]
+
+
+def cases_of(sizes: Sequence[int], paths: Sequence[str], layouts: Sequence[str],
+             cpp_sizes: Sequence[int]) -> Cases:
+    """Return every bring-up of a round: singles, each size through each path, the floors."""
+    cases: Cases = {}
+    for cpp in (False, True) if cpp_sizes else (False,):
+        kind = 'C++ ' if cpp else ''
+        for path in paths:
+            # a single instance runs in a process of its own through both paths
+            for single, label in (('beat', 'publisher'), ('hear', 'subscriber')):
+                cases[(f'single {kind}{label}', path, 'per-instance')] = (
+                    system_package(single, cpp), 1)
+            for size in cpp_sizes if cpp else sizes:
+                for layout in layouts if path == 'bringup' else ['shared']:
+                    cases[(f'{size} {kind}instances', path, layout)] = (
+                        system_package(size, cpp), size)
+        for size in () if cpp else sizes:
+            cases[(f'{size} instances', 'no path', FLOOR_LAYOUT)] = (system_package(size), size)
+    return cases
+
+
+def verdict(met: bool) -> str:
+    """Return how a goal is printed."""
+    return 'met' if met else 'NOT met'
+
+
+def print_goals(times: dict[tuple[str, str, str], list[float]], sizes: Sequence[int],
+                paths: Sequence[str], cpp_sizes: Sequence[int]) -> None:
+    """Print each goal of P5 that the rounds measured, "met" or "NOT met"."""
+    def fastest(case: tuple[str, str, str]) -> float | None:
+        return best(times[case]) if times.get(case) else None
+
+    for kind, these in (('', sizes), ('C++ ', cpp_sizes)):
+        for path in paths:
+            singles = [fastest((f'single {kind}{label}', path, 'per-instance'))
+                       for label in ('publisher', 'subscriber')]
+            for size in these:
+                took = fastest((f'{size} {kind}instances', path, 'shared'))
+                if took is None or None in singles:
+                    print(f'goal: {size} {kind}instances through {path} within {GOAL_SINGLE}x '
+                          'of the slowest single instance: NOT met (not up)')
+                    continue
+                reference = max(s for s in singles if s is not None)
+                print(f'goal: {size} {kind}instances through {path} within {GOAL_SINGLE}x of '
+                      f'the slowest single instance: {ratio(took, reference)} '
+                      f'({took:.2f} s against {reference:.2f} s): '
+                      f'{verdict(took <= GOAL_SINGLE * reference)}')
+                base = fastest((f'{size} instances', 'no path', FLOOR_LAYOUT))
+                if not kind and base is not None:
+                    print(f'goal: the manager adds at most {GOAL_FLOOR}x to the floor, {size} '
+                          f'instances through {path}: {ratio(took, base)}: '
+                          f'{verdict(took <= GOAL_FLOOR * base)}')
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -208,81 +348,113 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument('--sizes', type=int, nargs='+', default=[20, 50],
                         help='instances of the systems brought up (default: 20 50)')
     parser.add_argument('--rounds', type=int, default=3,
-                        help='bring-ups of each system and layout; the fastest counts')
+                        help='bring-ups of each system, path and layout; the fastest counts')
+    parser.add_argument('--paths', nargs='+', choices=('bringup', 'launch'),
+                        default=['bringup', 'launch'],
+                        help='how the systems are brought up (default: both; launch needs '
+                        'launch_ros)')
     parser.add_argument('--hang-runs', type=int, default=30,
-                        help='bring-ups in a row of the --hang-size system (default: 30)')
+                        help='bring-ups in a row of the --hang-size system through each path '
+                        '(default: 30)')
     parser.add_argument('--hang-size', type=int, default=20)
     parser.add_argument('--layouts', nargs='+', choices=('per-instance', 'shared'),
-                        default=['per-instance', 'shared'],
-                        help='process layouts of the systems of --sizes (default: both)')
-    parser.add_argument('--hang-layout', choices=('per-instance', 'shared'),
-                        default='per-instance')
+                        default=['shared'],
+                        help="process layouts of bringup (default: shared, the systems' own)")
+    parser.add_argument('--hang-layout', choices=('per-instance', 'shared'), default='shared',
+                        help="the layout of bringup's bring-ups in a row")
+    parser.add_argument('--cpp', type=int, nargs='*', metavar='SIZE',
+                        help='also C++ systems of these sizes, in the component container '
+                        '(default: 50; needs rclcpp_components)')
     parser.add_argument('--timeout', type=float, default=240.0,
                         help='seconds a bring-up may take before it counts as hung (bringup '
                         'itself reports within 90 + 2 x 30 s)')
     args = parser.parse_args(argv)
+    cpp_sizes: list[int] = [] if args.cpp is None else (args.cpp or [50])
     print_machine('bring-up: N instances vs the slowest single instance, one run')
-    largest = max(args.sizes + [args.hang_size])
+    if cpp_sizes and cpp_skip_reason() is not None:
+        print(f'C++ systems: skipped: {cpp_skip_reason()}')
+        cpp_sizes = []
+    sizes = sorted(set(args.sizes))
     with tempfile.TemporaryDirectory(prefix='robmosys-bench-bringup-') as tmp:
         root = Path(tmp)
-        write_workspace(root / 'src', largest)
+        write_workspace(root / 'src', sorted(set(sizes + [args.hang_size])), cpp_sizes)
         install = build(root)  # the same build as bench_runtime's
-        names = [f'{kind}_{i}' for i in range((largest + 1) // 2) for kind in ('beat', 'hear')]
-        cases: dict[tuple[str, str], tuple[Path, int]] = {
-            ('single publisher', 'per-instance'): (subset(install, ['beat_0'],
-                                                          root / 'beat.json'), 1),
-            ('single subscriber', 'per-instance'): (subset(install, ['hear_0'],
-                                                           root / 'hear.json'), 1)}
-        for size in args.sizes:
-            path = subset(install, names[:size], root / f'system_{size}.json')
-            for layout in args.layouts:
-                cases[(f'{size} instances', layout)] = (path, size)
-            cases[(f'{size} instances', FLOOR_LAYOUT)] = (path, size)
-        times: dict[tuple[str, str], list[float]] = {case: [] for case in cases}
+        paths = list(args.paths)
+        if 'launch' in paths and launch_skip_reason(install) is not None:
+            print(f'launch path: skipped: {launch_skip_reason(install)}')
+            paths.remove('launch')
+        cases = cases_of(sizes, paths, args.layouts, cpp_sizes)
+        times: dict[tuple[str, str, str], list[float]] = {case: [] for case in cases}
+        stops: dict[str, list[float]] = {path: [] for path in paths}
         for round_ in range(args.rounds):
             order = list(cases)[::1 if round_ % 2 == 0 else -1]
             for case in order:
-                path, count = cases[case]
-                if case[1] == FLOOR_LAYOUT:
-                    outcome, took = floor(install, path, count, args.timeout)
+                package, count = cases[case]
+                if case[2] == FLOOR_LAYOUT:
+                    outcome, took = floor(install, package, count, args.timeout)
+                    stop = ''
                 else:
-                    outcome, took = bring_up(install, path, case[1], count, args.timeout)
-                print(f'  round {round_ + 1}, {case[0]}, {case[1]}: {outcome} in {took:.2f} s',
-                      flush=True)
+                    outcome, took, ended = bring_up(install, package, case[1], case[2], count,
+                                                    args.timeout)
+                    stops[case[1]].append(ended)
+                    stop = f', Ctrl-C ended it in {ended:.2f} s'
+                print(f'  round {round_ + 1}, {case[0]}, {case[1]}, {case[2]}: {outcome} in '
+                      f'{took:.2f} s{stop}', flush=True)
                 if outcome == 'up':
                     times[case].append(took)
-        singles = [best(times[c]) for c in cases if c[0].startswith('single') and times[c]]
-        reference = max(singles) if singles else float('nan')
-        rows = [(name, layout, len(times[(name, layout)]),
-                 f'{best(times[(name, layout)]):.2f}' if times[(name, layout)] else '-',
-                 ratio(best(times[(name, layout)]), reference) if times[(name, layout)]
-                 else '-') for name, layout in cases]
-        print('time to all-active / the slowest single instance')
-        print(table(('system', 'processes', 'runs up', 'fastest s', 'ratio to slowest single'),
-                    rows))
-        print('time to all-active / the floor (the same nodes up in one process, no manager)')
-        print(table(('system', 'processes', 'ratio to the floor'), [
-            (name, layout, ratio(best(times[(name, layout)]),
-                                 best(times[(name, FLOOR_LAYOUT)])))
-            for name, layout in cases
-            if layout != FLOOR_LAYOUT and times[(name, layout)]
-            and times.get((name, FLOOR_LAYOUT))]))
-        print('spread (s):')
-        for case, samples in times.items():
-            if samples:
-                print(f'  {case[0]}, {case[1]}: {spread(samples)}')
-        hang_path = subset(install, names[:args.hang_size], root / 'hang.json')
-        outcomes: dict[str, int] = {'up': 0, 'failed': 0, 'hung': 0, 'stuck': 0}
-        for _ in range(args.hang_runs):
-            outcome, _ = bring_up(install, hang_path, args.hang_layout, args.hang_size,
-                                  args.timeout)
-            outcomes[outcome] += 1
-        print(f'{args.hang_runs} bring-ups in a row of {args.hang_size} instances '
-              f'({args.hang_layout}): {outcomes["up"]} up, {outcomes["failed"]} failed, '
-              f'{outcomes["hung"]} hung (timeout {args.timeout:g} s), {outcomes["stuck"]} '
-              'stuck at bring-down')
+        print_table(cases, times)
+        print_goals(times, sizes, paths, cpp_sizes)
+        for path in paths:
+            outcomes: dict[str, int] = {'up': 0, 'failed': 0, 'hung': 0, 'stuck': 0,
+                                        'killed': 0}
+            for _ in range(args.hang_runs):
+                outcome, _, ended = bring_up(install, system_package(args.hang_size), path,
+                                             args.hang_layout, args.hang_size, args.timeout)
+                outcomes[outcome] += 1
+                stops[path].append(ended)
+            layout = args.hang_layout if path == 'bringup' else 'shared'
+            print(f'{args.hang_runs} bring-ups in a row of {args.hang_size} instances through '
+                  f'{path} ({layout}): {outcomes["up"]} up, {outcomes["failed"]} failed, '
+                  f'{outcomes["hung"]} hung (timeout {args.timeout:g} s), {outcomes["stuck"]} '
+                  f'stuck at bring-down, {outcomes["killed"]} needed SIGKILL')
+            if args.hang_runs:
+                print(f'goal: 0 hangs in {args.hang_runs} bring-ups in a row through {path}: '
+                      f'{verdict(outcomes["up"] == args.hang_runs)}')
+        for path, durations in stops.items():
+            measured = [e for e in durations if e == e]
+            if measured:
+                print(f'goal: Ctrl-C through {path} ends every process within {GOAL_CTRL_C:g} '
+                      f's: slowest {max(measured):.2f} s of {len(measured)}: '
+                      f'{verdict(max(measured) <= GOAL_CTRL_C)}')
     print_end()
     return 0
+
+
+def print_table(cases: Cases, times: dict[tuple[str, str, str], list[float]]) -> None:
+    """Print each case's fastest time, against its path's slowest single and the floor."""
+    def fastest(case: tuple[str, str, str]) -> float | None:
+        return best(times[case]) if times.get(case) else None
+
+    rows = []
+    for case in cases:
+        took = fastest(case)
+        cpp = 'C++' in case[0]
+        singles = [fastest(c) for c in cases if c[0].startswith('single')
+                   and ('C++' in c[0]) == cpp and c[1] == case[1]]
+        reference = max((s for s in singles if s is not None), default=None)
+        size = case[0].split(' ')[0]
+        base = fastest((f'{size} instances', 'no path', FLOOR_LAYOUT))
+        rows.append((*case, len(times[case]), f'{took:.2f}' if took else '-',
+                     ratio(took, reference) if took and reference and None not in singles
+                     else '-',
+                     ratio(took, base) if took and base and not cpp else '-'))
+    print('time to all-active / the slowest single instance of the same path / the floor')
+    print(table(('system', 'path', 'processes', 'runs up', 'fastest s', '/ slowest single',
+                 '/ floor'), rows))
+    print('spread (s):')
+    for case, samples in times.items():
+        if samples:
+            print(f'  {case[0]}, {case[1]}, {case[2]}: {spread(samples)}')
 
 
 if __name__ == '__main__':

@@ -28,7 +28,9 @@ import tempfile
 import time
 from typing import Sequence
 
-from bench_bringup import _kill_left_over, _watch, BRING_DOWN_BOUND, SYSTEM, write_workspace
+from bench_bringup import (
+    _kill_left_over, _watch, BRING_DOWN_BOUND, description_of, MARKER, system_package,
+    write_workspace)
 from bench_runtime import build
 from benchlib import best, print_end, print_machine, spread, table
 from colcon_robmosys.devtools import ros_env
@@ -38,9 +40,9 @@ GOAL = 2.0
 _TICKS = os.sysconf('SC_CLK_TCK')
 
 
-def subset(install: Path, count: int, dest: Path) -> Path:
+def subset(install: Path, system: str, count: int, dest: Path) -> Path:
     """Write the system's description with its first pairs only, wired; return its path."""
-    description = json.loads((install / SYSTEM / 'share' / SYSTEM / 'bringup.json').read_text())
+    description = json.loads(description_of(install, system).read_text())
     pairs = (count + 1) // 2
     names = {f'{kind}_{i}' for i in range(pairs) for kind in ('beat', 'hear')}
     description['instances'] = [i for i in description['instances'] if i['instance'] in names]
@@ -56,11 +58,12 @@ def cpu_seconds(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / _TICKS
 
 
-def manager_cpu(install: Path, description: Path, count: int, period: float, *,
+def manager_cpu(install: Path, system: str, description: Path, count: int, period: float, *,
                 settle: float, window: float, timeout: float, layout: str) -> float | None:
     """Bring a system up, measure its manager's CPU per second, bring it down; None if not up."""
     env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
-    executable = install / SYSTEM / 'lib' / SYSTEM / 'bringup'
+    env[MARKER] = f'{os.getpid()}-{time.monotonic_ns()}'
+    executable = install / system / 'lib' / system / 'bringup'
     done = f'bringup: {count} of {count} managed instances active'
     with tempfile.TemporaryFile() as log:
         start = time.monotonic()
@@ -94,7 +97,7 @@ def manager_cpu(install: Path, description: Path, count: int, period: float, *,
                 except subprocess.TimeoutExpired:
                     os.killpg(process.pid, signal.SIGKILL)
                     process.wait()
-            _kill_left_over(install)
+            _kill_left_over(env[MARKER])
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -118,14 +121,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     print_machine("conformance watch: the manager's CPU time per second, on vs off, one run")
     with tempfile.TemporaryDirectory(prefix='robmosys-bench-watch-') as tmp:
         root = Path(tmp)
-        write_workspace(root / 'src', max(args.sizes))
+        system = system_package(max(args.sizes))
+        write_workspace(root / 'src', [max(args.sizes)])
         install = build(root)
         cases = [(size, period) for size in args.sizes for period in (args.check_period, 0.0)]
         samples: dict[tuple[int, float], list[float]] = {case: [] for case in cases}
         for round_ in range(args.rounds):
             for size, period in cases[::1 if round_ % 2 == 0 else -1]:
-                path = subset(install, size, root / f'system_{size}.json')
-                used = manager_cpu(install, path, size, period, settle=args.settle,
+                path = subset(install, system, size, root / f'system_{size}.json')
+                used = manager_cpu(install, system, path, size, period, settle=args.settle,
                                    window=args.window, timeout=args.timeout,
                                    layout=args.layout)
                 what = f'watch every {period:g} s' if period else 'watch off'

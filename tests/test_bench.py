@@ -150,13 +150,25 @@ def test_watch_benchmark_prints_the_cost_of_the_watch(capsys):
 def test_bringup_benchmark_prints_ratios_and_counts_hangs(capsys):
     """Every system of the bring-up benchmark comes up, in both layouts, and its floor."""
     assert bench_bringup.main(['--sizes', '4', '--rounds', '1', '--hang-runs', '2',
-                               '--hang-size', '2', '--timeout', '90']) == 0
+                               '--hang-size', '2', '--timeout', '90', '--paths', 'bringup',
+                               '--layouts', 'per-instance', 'shared']) == 0
     out = capsys.readouterr().out
     assert len(re.findall(r'round 1, .*: up in', out)) == 5, out
-    assert len(re.findall(rf'^\| 4 instances +\| (per-instance|shared|one, no manager '
-                          rf'\(floor\)) .* {RATIO} +\|', out, re.MULTILINE)) == 3 + 2, out
-    assert '2 bring-ups in a row of 2 instances (per-instance): 2 up, 0 failed, 0 hung' in out
-    assert ', 0 stuck at bring-down' in out
+    # each Ctrl-C is timed
+    assert len(re.findall(r'round 1, .*: up in .*, Ctrl-C ended it in \d+\.\d\d s', out)) == 4
+    assert len(re.findall(rf'^\| 4 instances +\| (bringup|no path) +\| (per-instance|shared|'
+                          rf'one, no manager \(floor\)) .* {RATIO} +\|', out,
+                          re.MULTILINE)) == 3, out
+    assert re.search(r'goal: 4 instances through bringup within 1.5x of the slowest single '
+                     r'instance: .*: (met|NOT met)$', out, re.MULTILINE), out
+    assert re.search(r'goal: the manager adds at most 1.15x to the floor, 4 instances through '
+                     r'bringup: .*: (met|NOT met)$', out, re.MULTILINE), out
+    assert '2 bring-ups in a row of 2 instances through bringup (shared): 2 up, 0 failed, ' \
+        '0 hung' in out, out
+    assert ', 0 stuck at bring-down, 0 needed SIGKILL' in out
+    assert 'goal: 0 hangs in 2 bring-ups in a row through bringup: met' in out
+    assert re.search(r'goal: Ctrl-C through bringup ends every process within 5 s: slowest '
+                     r'\d+\.\d\d s of 6: (met|NOT met)', out), out
 
 
 def test_cpp_pairs_are_skipped_without_rclcpp_and_run_with_it(tmp_path):

@@ -242,6 +242,26 @@ def test_cpp_sender_sends_to_cpp_receiver_with_checked_parameters(
                           timeout=20), out['receiver'].output()
 
 
+@requires_rclcpp
+def test_a_cpp_node_without_its_required_parameter_does_not_configure(
+        test_workspace_built, domain_id):
+    """cpp_receiver's station has no default: without a value, configure fails and names it."""
+    share = test_workspace_built.share(SYSTEM)
+    receiver = {n.name: n for n in read_launch_file(nodes_launch_file(share), share)}['receiver']
+    # its executable, without the system's parameter file
+    command = [*receiver.command(test_workspace_built.install)[:1], '--ros-args', '-r',
+               '__node:=lonely_receiver']
+    with ros_env.background(command, env=test_workspace_built.env(domain_id)) as process, \
+            LifecycleDriver(domain_id) as driver:
+        assert driver.state('/lonely_receiver') == 'unconfigured', process.output()
+        assert not driver.transition('/lonely_receiver', 'configure')
+        assert wait_until(lambda: "configure failed: parameter 'station' has no value" in
+                          process.output(), 10), process.output()
+        assert driver.set_parameters('/lonely_receiver', {'station': 'dock'}) == {
+            'station': (True, '')}
+        assert driver.transition('/lonely_receiver', 'configure'), process.output()
+
+
 COMPONENT_LOADER = """
 import sys
 import rclpy

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import contextlib
 import importlib.util
+from pathlib import Path
 import re
 import shutil
 import signal
@@ -190,3 +191,132 @@ def test_two_hosts_as_two_launches_in_one_domain(launch_env, hosted_built, domai
             launched.proc.send_signal(signal.SIGINT)
             launched.proc.wait(timeout=30)
         assert 'Traceback' not in manager.output() + robot.output()
+
+
+#: ros2 launch's way with arguments: name:=value, given to the included file
+ARGUMENTS_LAUNCHER = """
+import sys
+from launch import LaunchDescription, LaunchService
+from launch.actions import IncludeLaunchDescription
+from launch.launch_description_sources import PythonLaunchDescriptionSource
+arguments = [tuple(a.split(':=', 1)) for a in sys.argv[2:]]
+service = LaunchService()
+service.include_launch_description(LaunchDescription([IncludeLaunchDescription(
+    PythonLaunchDescriptionSource(sys.argv[1]), launch_arguments=arguments)]))
+sys.exit(service.run())
+"""
+
+#: what ros2 launch --show-args prints: the arguments a launch file declares
+SHOW_ARGS = """
+import sys
+from launch.launch_description_sources import get_launch_description_from_python_launch_file
+description = get_launch_description_from_python_launch_file(sys.argv[1])
+for argument in description.get_launch_arguments():
+    print(f'{argument.name}|{argument.default_value[0].text if argument.default_value else ""}|'
+          f'{argument.description}')
+"""
+
+
+@pytest.mark.parametrize('launch_file', [
+    'pubsub_system.launch.py', 'pubsub_system.nodes.launch.py',
+    'pubsub_system.publisher.launch.py', 'pubsub_system.subscriber.nodes.launch.py'])
+def test_show_args_lists_the_arguments_with_their_descriptions(
+        test_workspace_built, launch_env, launch_file):
+    share = test_workspace_built.share('pubsub_system')
+    shown = __import__('subprocess').run(
+        [sys.executable, '-c', SHOW_ARGS, str(share / 'launch' / launch_file)],
+        env=launch_env, capture_output=True, text=True, timeout=60, check=True).stdout
+    arguments = {line.split('|')[0]: line.split('|')[1:] for line in shown.splitlines()}
+    assert set(arguments) == {'use_sim_time', 'log_level', 'namespace', 'params_file'}, shown
+    assert arguments['log_level'][0] == 'info'
+    assert 'cfg/params.yaml: its values win' in arguments['params_file'][1]
+    assert all(description for _, description in arguments.values()), shown
+
+
+def test_launch_arguments_reach_every_node(test_workspace_built, launch_env, domain_id,
+                                           tmp_path):
+    """use_sim_time, log_level, namespace and the operator's file, through ros2 launch."""
+    from colcon_robmosys.devtools.system import LifecycleDriver
+    operator = tmp_path / 'operator.yaml'
+    operator.write_text('/robot1/publisher:\n  ros__parameters:\n    noOfScans: 7\n')
+    share = test_workspace_built.share('pubsub_system')
+    with background([sys.executable, '-c', ARGUMENTS_LAUNCHER,
+                     str(share / 'launch' / 'pubsub_system.launch.py'), 'use_sim_time:=true',
+                     'log_level:=debug', 'namespace:=robot1', f'params_file:={operator}'],
+                    env=launch_env) as launched, LifecycleDriver(domain_id) as driver:
+        # the manager moved with the system, and brings the moved nodes up
+        assert wait_until(lambda: 'bringup: 2 of 2 managed instances active' in
+                          launched.output(), timeout=60), launched.output()
+        for fqn in ('/robot1/publisher', '/robot1/subscriber'):
+            assert driver.state(fqn) == 'active', fqn
+        # the operator's value wins, the system's others stay
+        assert driver.parameters('/robot1/publisher', ['use_sim_time', 'indoor', 'noOfScans']) \
+            == {'use_sim_time': True, 'indoor': True, 'noOfScans': 7}
+        assert driver.parameters('/robot1/subscriber', ['use_sim_time']) == \
+            {'use_sim_time': True}
+        # the connection moved too: the subscriber is on the publisher's moved topic (the
+        # manager's watch may subscribe to it as well: each node's own topics are asked)
+
+        def connected() -> bool:
+            published = driver.node.get_publisher_names_and_types_by_node(
+                'publisher', '/robot1')
+            subscribed = driver.node.get_subscriber_names_and_types_by_node(
+                'subscriber', '/robot1')
+            return '/robot1/publisher/pMap' in {n for n, _ in published} & \
+                {n for n, _ in subscribed}
+        assert wait_until(connected, timeout=30), launched.output()
+        assert not {('publisher', '/'), ('subscriber', '/')} & set(
+            driver.node.get_node_names_and_namespaces())
+        assert re.search(r'\[DEBUG\].*publisher', launched.output()), launched.output()
+
+
+@pytest.fixture(scope='module')
+def crowd_launched_built(tmp_path_factory) -> BuiltWorkspace:
+    """Return crowd_system: 20 instances (shared by default), a C++ pair among them."""
+    from test_process_layout import build_crowd
+    return build_crowd(tmp_path_factory.mktemp('crowd_launched'), 20, cpp=True)
+
+
+def test_a_shared_system_comes_up_through_its_launch_file_and_ctrl_c_ends_it_in_bounds(
+        crowd_launched_built, domain_id, tmp_path):
+    """<system>.launch.py runs the Python instances in one process, the C++ in a container.
+
+    The launch arguments reach the nodes of both as they reach a node of its
+    own (here namespace and an operator's file). Ctrl-C ends every process
+    within 5 s, beside another launched system, and launch never escalates to
+    SIGTERM or SIGKILL.
+    """
+    from colcon_robmosys.devtools.system import LifecycleDriver
+    from test_process_layout import (
+        CTRL_C_BOUND, ctrl_c, loaded_machine, marked_env, MARKER, processes_marked)
+    operator = tmp_path / 'operator.yaml'
+    operator.write_text('/robot1/pub_0:\n  ros__parameters:\n    noOfScans: 7\n'
+                        '/robot1/pub_cpp:\n  ros__parameters:\n    noOfScans: 8\n')
+    env = marked_env(crowd_launched_built, domain_id)
+    launch = crowd_launched_built.share('crowd_system') / 'launch' / 'crowd_system.launch.py'
+    command = [sys.executable, '-c', ARGUMENTS_LAUNCHER, str(launch), 'namespace:=robot1',
+               f'params_file:={operator}']
+    with loaded_machine(command, env), background(command, env=env, stop_timeout=30) as run:
+        assert wait_until(lambda: 'bringup: 20 of 20 managed instances active' in
+                          run.output(), timeout=180), run.output()
+        # Python -> Python and C++ -> C++, every subscriber
+        assert wait_until(lambda: len(set(re.findall(r'[\[.](sub_\w+)[.\]].*got map data',
+                                                     run.output()))) == 10, timeout=60), \
+            run.output()
+        # moved into the namespace, the operator's values theirs: in the shared Python
+        # process and in the container alike
+        with LifecycleDriver(domain_id) as driver:
+            for fqn, scans in (('/robot1/pub_0', 7), ('/robot1/pub_cpp', 8)):
+                assert driver.state(fqn) == 'active', fqn
+                assert driver.parameters(fqn, ['noOfScans']) == {'noOfScans': scans}, fqn
+        marked = processes_marked(env[MARKER])
+        commands = [(Path('/proc') / str(p) / 'cmdline').read_bytes() for p in marked]
+        assert sum(b'robmosys_runtime.container' in c for c in commands) == 1, commands
+        assert sum(b'__node:=crowd_system_container' in c for c in commands) == 1, commands
+        # the launch, the Python instances, the container, the manager
+        assert len(marked) == 4, commands
+        took, output = ctrl_c(run, env[MARKER])
+        assert run.proc.wait(timeout=1) == 0, output
+    assert took <= CTRL_C_BOUND, f'{took:.2f} s:\n{output}'
+    assert 'escalating' not in output and 'SIGKILL' not in output, output
+    assert 'Traceback' not in output, output

@@ -294,10 +294,13 @@ def test_parameters_of_every_type(workspace):
         ('weights', 'double[]', (0.5, 1.0), False, None),
         ('names', 'string[]', ('a', 'b'), False, None),
         ('key', 'byte[]', (0, 255), False, None),
-        # no default: the zero of the type
         ('count', 'int', 0, False, None),
+        # an integer default of a double is a float
         ('threshold', 'double', 0.0, False, None),
     ]
+    # each has a default: none must be set by a system
+    assert not any(p.required for p in talker.parameters)
+    assert isinstance(talker.parameters[-1].default, float)
     gain = talker.parameters[2]
     assert isinstance(gain.default, float)
     assert isinstance(talker.parameters[6].default[1], float)

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import contextlib
 import re
+import sys
 from typing import Iterator
 
 import pytest
@@ -62,13 +63,15 @@ components:
       gain: {type: double, default: 1.0, range: {from: 0.0, to: 5.0}, for_each: joints,
              on_change: fJointGain}
       limits.mode: {type: string, default: soft, one_of: [soft, hard], for_each: joints}
+      # no default: required, set by the system
+      port: {type: string, description: The device it talks to.}
 systems:
   - package: tuner_system
-    parameters: {use_sim_time: true, mode: fast}
+    parameters: {mode: fast, port: /dev/null}
     instances:
       first: {component: tuner, parameters: {mode: slow, controller.gain: 0.7, joints: [a, b],
                                              b.gain: 2.5}}
-      second: {component: tuner}
+      second: {component: tuner, parameters: {use_sim_time: true}}
 """
 
 IMPL = '''\
@@ -118,11 +121,13 @@ def running(built) -> Iterator[tuple[dict[str, NodeLaunch], dict[str, Background
 
 def test_system_wide_and_own_values_are_read_back_nested(running):
     nodes, _, driver = running
-    names = ['use_sim_time', 'mode', 'controller.gain', 'controller.pid.kp']
+    names = ['use_sim_time', 'mode', 'controller.gain', 'controller.pid.kp', 'port']
     assert driver.parameters(nodes['first'].fqn, names) == {
-        'use_sim_time': True, 'mode': 'slow', 'controller.gain': 0.7, 'controller.pid.kp': 3}
+        'use_sim_time': False, 'mode': 'slow', 'controller.gain': 0.7, 'controller.pid.kp': 3,
+        'port': '/dev/null'}
     assert driver.parameters(nodes['second'].fqn, names) == {
-        'use_sim_time': True, 'mode': 'fast', 'controller.gain': 0.5, 'controller.pid.kp': 3}
+        'use_sim_time': True, 'mode': 'fast', 'controller.gain': 0.5, 'controller.pid.kp': 3,
+        'port': '/dev/null'}
 
 
 def test_values_that_break_a_rule_are_refused_with_the_reason(running):
@@ -231,3 +236,55 @@ def test_the_parameter_page_is_installed(built):
     assert "| 'abc' | no | 1 to 8 characters; validated by vLabel\\(\\) |" in page
     assert '| `<joints>.gain` | double | 1.0 | no | one per entry of joints; in \\[0.0, 5.0\\] ' \
         '| fJointGain |  |' in page
+    assert '| `port` | string | none: required | no |  |  | The device it talks to. |' in page
+    assert 'A parameter without default is required' in page
+
+
+def test_a_required_parameter_left_unset_fails_configure_with_its_name(built):
+    node = _launched(built)['second']
+    domain_id = free_domain_id()
+    # started without the system's parameter file: port has no value
+    command = [*node.command(built.install)[:1], '--ros-args', '-r', '__node:=lonely']
+    with background(command, env=built.env(domain_id)) as process, \
+            LifecycleDriver(domain_id) as driver:
+        assert driver.state('/lonely') == 'unconfigured', process.output()
+        assert not driver.transition('/lonely', 'configure')
+        assert wait_until(lambda: "configure failed: parameter 'port' has no value (it has no "
+                          'default: set it in a parameter file, or with -p port:=<value>)'
+                          in process.output(), 10), process.output()
+        assert driver.state('/lonely') == 'unconfigured'
+        # given a value, it configures
+        assert driver.set_parameters('/lonely', {'port': '/dev/ttyS0'}) == {'port': (True, '')}
+        assert driver.transition('/lonely', 'configure'), process.output()
+
+
+def test_bringup_applies_the_launch_arguments_to_every_node(built, tmp_path):
+    """--use-sim-time, --log-level, --namespace and --params-file reach the nodes."""
+    operator = tmp_path / 'operator.yaml'
+    # the operator's file names the nodes as they run, in the namespace; its
+    # values win over the system's (first: mode slow, second: port /dev/null)
+    operator.write_text('/robot1/first:\n  ros__parameters:\n    mode: fast\n'
+                        '/**:\n  ros__parameters:\n    port: /dev/ttyUSB0\n')
+    domain_id = free_domain_id()
+    executable = built.install / 'tuner_system' / 'lib' / 'tuner_system' / 'bringup'
+    with background([sys.executable, str(executable), '--use-sim-time', '--log-level', 'debug',
+                     '--namespace', 'robot1', '--params-file', str(operator),
+                     '--check-period', '0'], env=built.env(domain_id)) as process, \
+            LifecycleDriver(domain_id) as driver:
+        # bringup says so once every managed instance is active
+        assert wait_until(lambda: 'bringup: 2 of 2 managed instances active' in
+                          process.output(), 90), process.output()
+        names = ['use_sim_time', 'mode', 'port', 'controller.gain']
+        assert driver.parameters('/robot1/first', names) == {
+            'use_sim_time': True, 'mode': 'fast', 'port': '/dev/ttyUSB0',
+            'controller.gain': 0.7}
+        assert driver.parameters('/robot1/second', names) == {
+            'use_sim_time': True, 'mode': 'fast', 'port': '/dev/ttyUSB0',
+            'controller.gain': 0.5}
+        # the manager moved with its system; nothing is left at the root
+        assert wait_until(lambda: ('tuner_system_bringup', '/robot1') in
+                          driver.node.get_node_names_and_namespaces(), 10)
+        assert not {('first', '/'), ('second', '/')} & set(
+            driver.node.get_node_names_and_namespaces())
+        # debug messages of the nodes' processes: rcl's, at node creation
+        assert wait_until(lambda: re.search(r'\[DEBUG\].*first', process.output()), 10)

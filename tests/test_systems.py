@@ -185,7 +185,8 @@ def test_activate_file_follows_the_activation_model(generated, launch_file):
     if instance is None:
         # the system's own file: the system manager brings it up, from bringup.json
         source = (generated / package / 'launch' / name).read_text()
-        assert "executable='bringup',\n            arguments=['--attach']," in source
+        assert "executable='bringup',\n            arguments=['--attach', *arguments.manager]," \
+            in source
         description = json.loads((generated / package / 'bringup.json').read_text())
         activate_after = {i['instance']: i['after'] for i in description['instances']
                           if i['managed']}
@@ -293,7 +294,10 @@ def test_activate_file_drives_the_managed_instances_by_their_node_names(generate
     managed = [i for i in system.instances if i.activate and i.name == 'monitor']
     assert tables['NODES'] == {i.name: _fqn(i) for i in managed}
     assert set(tables['ACTIVATE_AFTER']) == set(tables['NODES'])
-    assert 'SystemActivation(get_ros_node(context), NODES, ACTIVATE_AFTER' in source
+    # moved into the namespace argument, if one is given
+    assert 'SystemActivation(get_ros_node(context),\n' \
+        '                                  SystemArguments.moved_nodes(context, NODES),\n' \
+        '                                  ACTIVATE_AFTER' in source
 
 
 # warnings -------------------------------------------------------------------

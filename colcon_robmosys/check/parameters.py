@@ -72,6 +72,22 @@ def override_problems(instance: Instance, component: Component,
     return problems
 
 
+def unset_problems(system: System, instance: Instance, component: Component
+                   ) -> list[Diagnostic]:
+    """Return the parameters without default that a system leaves unset for an instance.
+
+    The node would not configure without a value (it names the parameter);
+    the system sets it for the instance, or for every instance.
+    """
+    given = {name for name, _ in instance.parameters} | {name for name, _ in system.parameters}
+    return [Diagnostic(instance.location, f"instance '{instance.name}': parameter "
+                       f"'{parameter.name}' of component '{component.name}' has no default, "
+                       "and the system does not set it (in the instance's parameters, or "
+                       "the system's)")
+            for parameter in component.parameters
+            if parameter.required and parameter.name not in given]
+
+
 def _at_entry(location: Location, entries: tuple[Location, ...], value: Any, problem: str,
               problem_of: Callable[[Any], str | None]) -> Location:
     """Return where a value's problem stands: at its entry, if it is one entry's."""

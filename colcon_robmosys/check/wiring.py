@@ -9,7 +9,8 @@ from dataclasses import dataclass, field
 
 from colcon_robmosys.check.activities import system_executor_problems
 from colcon_robmosys.check.context import CheckContext
-from colcon_robmosys.check.parameters import everywhere_problems, override_problems
+from colcon_robmosys.check.parameters import (
+    everywhere_problems, override_problems, unset_problems)
 from colcon_robmosys.check.qos import (
     check_connection_qos, check_qos_overrides, End, with_article as _a)
 from colcon_robmosys.errors import Location
@@ -67,6 +68,7 @@ def _check_system(ctx: CheckContext, system: System) -> None:
                       f"'{fqn}' of instance '{node_names[fqn]}'")
         node_names[fqn] = instance.name
         ctx.diagnostics += override_problems(instance, component, dict(system.parameters))
+        ctx.diagnostics += unset_problems(system, instance, component)
         check_qos_overrides(ctx, instance, component)
         for after in instance.after:
             other = system.instance(after)

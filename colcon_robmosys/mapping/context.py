@@ -91,6 +91,8 @@ class SpelledParameter:
     #: with {} for the entry (``gains.{}.p``)
     for_each: str = ''
     pattern: str = ''
+    #: no default: declared without a value, which the node needs to configure
+    required: bool = False
 
 
 @dataclass(frozen=True)
@@ -231,6 +233,11 @@ class ComponentContext:
     def mapped(self) -> tuple[MappedDeclarations, ...]:
         """Return the mapped parameters, declared for each entry of their arrays."""
         return mapped_declarations(self.parameters)
+
+    @property
+    def required(self) -> tuple[str, ...]:
+        """Return the names of the parameters without default: the node needs their values."""
+        return tuple(p.name for p in self.parameters if p.required)
 
 
 #: a backend's context class

@@ -5,6 +5,7 @@
 
 from __future__ import annotations
 
+from collections import Counter
 from dataclasses import dataclass, replace
 
 from colcon_robmosys.mapping.common import Banner, unique
@@ -12,6 +13,21 @@ from colcon_robmosys.model.types import System
 
 #: where the system package installs its parameter file
 PARAMS_FILE = 'cfg/params.yaml'
+#: where it installs what ``bringup`` and the shared Python process read
+DESCRIPTION_FILE = 'bringup.json'
+#: a system that does not say ``processes`` shares them from this many instances on
+#: one host: one process per instance, 20 Python instances came up through
+#: ``ros2 launch`` in 1 run of 3 and through ``bringup`` in 8.9x the time of one
+#: (issue 28, docs/performance.md); the systems below keep a process per instance
+SHARED_FROM = 20
+
+
+def process_layout(system: System) -> str:
+    """Return how a system runs its instances: what it says, or by its size."""
+    if system.processes:
+        return system.processes
+    on_one_host = Counter(i.host for i in system.instances).values()
+    return 'shared' if max(on_one_host, default=0) >= SHARED_FROM else 'per_instance'
 
 
 @dataclass(frozen=True)
@@ -74,6 +90,10 @@ class LaunchFile:
     what: str
     #: instances it activates that the launch file of their host starts
     remote: tuple[SystemNode, ...] = ()
+    #: whether the Python instances share one process (``processes: shared``)
+    shared: bool = False
+    #: whether its C++ instances share a container, when shared (the manager's host)
+    containers: bool = False
 
     @property
     def stem(self) -> str:
@@ -95,17 +115,71 @@ class LaunchFile:
         """Tell whether the file starts the system manager: the system's own file does."""
         return self.suffix == ''
 
+    # The processes of its instances, as bringup's (robmosys_runtime.processes,
+    # plan_processes) from the same bringup.json: one per instance, or with
+    # processes: shared one for the Python instances and a component container
+    # for the C++ instances of the manager's host. templates/system/processes.jinja
+    # starts them, the one list of nodes of every launch file.
+
+    @property
+    def together(self) -> tuple[SystemNode, ...]:
+        """Return the Python instances that share one process."""
+        return tuple(n for n in self.nodes if self.shared and n.python_class)
+
+    @property
+    def loaded(self) -> tuple[SystemNode, ...]:
+        """Return the C++ instances loaded into the system's component container."""
+        return tuple(n for n in self.nodes if self.shared and self.containers and n.plugin)
+
+    @property
+    def alone(self) -> tuple[SystemNode, ...]:
+        """Return the instances that run in a process of their own."""
+        grouped = {n.instance for n in self.together + self.loaded}
+        return tuple(n for n in self.nodes if n.instance not in grouped)
+
+    @property
+    def together_respawn(self) -> bool:
+        """Tell whether the shared Python process starts again when it ends (as bringup)."""
+        return any(n.respawn for n in self.together)
+
+    @property
+    def description_file(self) -> str:
+        """Return where the system package installs its description (the shared process)."""
+        return DESCRIPTION_FILE
+
+    @property
+    def container(self) -> str:
+        """Return the node name of the component container, as bringup names it."""
+        return f'{self.package}_container'
+
     @property
     def node_classes(self) -> str:
-        """Return the launch_ros actions that start its nodes: LifecycleNode, Node."""
-        return ', '.join(sorted({'LifecycleNode' if n.lifecycle else 'Node'
-                                 for n in self.nodes}))
+        """Return the launch_ros actions that start its processes."""
+        return ', '.join(self._ros_actions())
 
     @property
     def manager_classes(self) -> str:
         """Return the launch_ros actions of the file that also starts the manager (a Node)."""
-        return ', '.join(sorted({'LifecycleNode' if n.lifecycle else 'Node'
-                                 for n in self.nodes} | {'Node'}))
+        return ', '.join(self._ros_actions('Node'))
+
+    @property
+    def launch_actions(self) -> str:
+        """Return the launch.actions of its processes: ExecuteProcess, or none."""
+        return ', '.join(self._launch_actions())
+
+    @property
+    def activate_actions(self) -> str:
+        """Return the launch.actions of a file that activates its instances itself."""
+        return ', '.join(self._launch_actions('OpaqueFunction', 'RegisterEventHandler'))
+
+    def _ros_actions(self, *more: str) -> list[str]:
+        classes = {'LifecycleNode' if n.lifecycle else 'Node' for n in self.alone}
+        if self.loaded:
+            classes.add('ComposableNodeContainer')
+        return sorted(classes | set(more))
+
+    def _launch_actions(self, *more: str) -> list[str]:
+        return sorted(set(more) | ({'ExecuteProcess'} if self.together else set()))
 
     @property
     def activates_itself(self) -> bool:
@@ -153,6 +227,10 @@ def launch_files(system: System, nodes: tuple[SystemNode, ...],
         def waiting(chosen: tuple[SystemNode, ...]) -> tuple[SystemNode, ...]:
             return tuple(replace(n, activate_after=tuple(a for a in n.after if a in managed))
                          for n in chosen)
+        # as bringup: the instances of one file share processes (one instance
+        # alone needs none), C++ ones a container on the manager's host only
         files.append(LaunchFile(suffix, banner, system.package, PARAMS_FILE,
-                                waiting(selected), what, waiting(elsewhere)))
+                                waiting(selected), what, waiting(elsewhere),
+                                shared=process_layout(system) == 'shared' and len(selected) > 1,
+                                containers=not suffix))
     return tuple(files)

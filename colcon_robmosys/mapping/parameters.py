@@ -119,6 +119,8 @@ class ParameterRow:
     constraints: tuple[str, ...]
     on_change: tuple[str, ...]
     description: str
+    #: no default: a system must set it
+    required: bool = False
 
 
 @dataclass(frozen=True)
@@ -130,14 +132,20 @@ class ParameterPage:
     package: str
     rows: tuple[ParameterRow, ...]
 
+    @property
+    def has_required(self) -> bool:
+        """Tell whether a parameter has no default."""
+        return any(r.required for r in self.rows)
+
 
 def parameter_page(component: Component, banner: Banner) -> ParameterPage | None:
     """Return the documentation page of a component's parameters, None without any."""
     if not component.parameters:
         return None
     return ParameterPage(banner, component.name, component.package, tuple(
-        ParameterRow(p.shown_name, p.type, shown_default(p), p.read_only,
+        ParameterRow(p.shown_name, p.type, 'none: required' if p.required else shown_default(p),
+                     p.read_only,
                      tuple(([f'one per entry of {p.for_each}'] if p.for_each else []) +
                            constraints(p)),
-                     p.on_change, p.description)
+                     p.on_change, p.description, p.required)
         for p in component.parameters))

@@ -19,7 +19,7 @@ from colcon_robmosys.mapping.connections import (
 from colcon_robmosys.mapping.declared import declared_parameters, DeclaredParameter
 from colcon_robmosys.mapping.executors import shared_executors
 from colcon_robmosys.mapping.launch import (
-    launch_files, LaunchFile, PARAMS_FILE, SystemNode)
+    launch_files, LaunchFile, PARAMS_FILE, process_layout, SystemNode)
 from colcon_robmosys.mapping.names import connection_name
 from colcon_robmosys.mapping.parameters import NODE_PARAMETERS
 from colcon_robmosys.mapping.portkinds import port_kind
@@ -88,7 +88,8 @@ class SystemPackage:
     exec_depends: tuple[str, ...]
     package_xml: PackageXml
     connections: tuple[SystemConnection, ...] = ()
-    #: 'per_instance', or 'shared': bringup runs the Python instances of a host in one process
+    #: 'per_instance', or 'shared': the Python instances of a host in one process, the C++
+    #: ones of the manager's host in a component container (bringup and the launch files)
     processes: str = 'per_instance'
     #: per instance, in model order: what the system manager's watch compares
     watched: tuple[WatchedInstance, ...] = ()
@@ -318,7 +319,7 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
         instances=_instances(system, components),
         edges=_edges(system, components, topics),
         connections=system_connections(system, components, topics),
-        processes=system.processes,
+        processes=process_layout(system),
         watched=watched_instances(system, components, topics),
         model_files=tuple(sorted(_installed_models(workspace).items())),
         declared=tuple((i.name, declared_parameters(i, components[i.name], topics,

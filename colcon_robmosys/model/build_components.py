@@ -219,7 +219,8 @@ class ComponentBuilder(MappedParameterBuilder):
             tuple([on_change] if isinstance(on_change, str) else on_change),
             self.at(path + ('validate',)) if 'validate' in raw else None,
             self.at(path + ('on_change',)) if on_change else None,
-            raw.get('for_each'), self.at(path + ('for_each',)) if 'for_each' in raw else None)
+            raw.get('for_each'), self.at(path + ('for_each',)) if 'for_each' in raw else None,
+            required='default' not in raw and 'for_each' not in raw)
         if parameter.read_only and on_change:
             self.error(path + ('on_change',), f"parameter '{name}': 'on_change' has no "
                        'meaning for a read-only parameter: it never changes after start',

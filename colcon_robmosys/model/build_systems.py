@@ -86,7 +86,7 @@ class SystemBuilder(BuilderBase):
         everywhere = tuple(raw.get('parameters', {}).items())
         return System(info, name, tuple(instances), tuple(connections),
                       self.at(path + ('package',)),
-                      raw.get('processes', 'per_instance'), tuple(subsystems), everywhere,
+                      raw.get('processes', ''), tuple(subsystems), everywhere,
                       tuple(self.at(path + ('parameters', n), key=True) for n, _ in everywhere),
                       self._entries(path + ('parameters',), everywhere),
                       Executor(raw['executor']) if 'executor' in raw else None,

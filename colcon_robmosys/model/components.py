@@ -121,6 +121,8 @@ class Parameter:
     #: the string array it is repeated for: one parameter per entry (a mapped parameter)
     for_each: str | None = None
     for_each_location: Location | None = None
+    #: no default: a system must set it, and a node without a value does not configure
+    required: bool = False
 
     @property
     def path(self) -> tuple[str, ...]:

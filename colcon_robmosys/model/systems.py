@@ -147,8 +147,9 @@ class System:
     instances: tuple[Instance, ...]
     connections: tuple[Connection, ...]
     location: Location
-    #: 'per_instance' or 'shared' (the Python instances of a host in one process)
-    processes: str = 'per_instance'
+    #: 'per_instance', 'shared' (the Python instances of a host in one process), or ''
+    #: where the model does not say (the mapping decides by size: process_layout)
+    processes: str = ''
     subsystems: tuple[Subsystem, ...] = ()
     #: values for every instance (the /** entry of the parameter file), and where each stands
     parameters: tuple[tuple[str, Any], ...] = ()

@@ -27,6 +27,8 @@ class NodeLaunch:
     remappings: tuple[tuple[str, str], ...]
     params_files: tuple[Path, ...]
     extra: dict[str, Any] = field(default_factory=dict)
+    #: the ROS arguments of its process (the launch argument log_level)
+    ros_arguments: tuple[str, ...] = ()
 
     @property
     def fqn(self) -> str:
@@ -47,12 +49,17 @@ class NodeLaunch:
             args += ['--params-file', str(params_file)]
         for source, target in self.remappings:
             args += ['-r', f'{source}:={target}']
-        return args
+        return args + list(self.ros_arguments)
 
 
 def _literal(node: ast.AST, names: dict[str, Any]) -> Any:
-    if isinstance(node, ast.Name) and node.id in names:
-        return names[node.id]
+    if isinstance(node, (ast.Name, ast.Attribute)) and ast.unparse(node) in names:
+        return names[ast.unparse(node)]
+    if isinstance(node, ast.Call) and ast.unparse(node.func) == 'arguments.moved':
+        # a name of the model, moved into the namespace argument: none by default
+        return _literal(node.args[0], names)
+    if isinstance(node, ast.Tuple):
+        return tuple(_literal(item, names) for item in node.elts)
     if isinstance(node, ast.List):
         return [_literal(item, names) for item in node.elts]
     return ast.literal_eval(node)
@@ -77,7 +84,10 @@ def read_launch_file(path: Path, share_dir: Path) -> list[NodeLaunch]:
       ``params_file`` of the launch file resolves
     """
     tree = ast.parse(path.read_text(encoding='utf-8'), filename=str(path))
-    names: dict[str, Any] = {}
+    # what robmosys_runtime.launching.SystemArguments gives every node when
+    # no launch argument is given: the system's parameter file, log level info
+    names: dict[str, Any] = {'arguments.parameters': [share_dir / 'cfg' / 'params.yaml'],
+                             'arguments.ros_arguments': ['--log-level', 'info']}
     for node in ast.walk(tree):
         # params_file = os.path.join(get_package_share_directory(pkg), 'cfg/...')
         if isinstance(node, ast.Assign) and isinstance(node.value, ast.Call) and \
@@ -105,6 +115,7 @@ def read_launch_file(path: Path, share_dir: Path) -> list[NodeLaunch]:
                 namespace=kwargs.pop('namespace', ''),
                 remappings=tuple(tuple(r) for r in kwargs.pop('remappings', [])),
                 params_files=tuple(Path(p) for p in kwargs.pop('parameters', [])),
+                ros_arguments=tuple(kwargs.pop('ros_arguments', ())),
                 extra=kwargs))
     return nodes
 

@@ -49,6 +49,8 @@ class CppParameter(SpelledParameter):
     default_lines: tuple[str, ...]
     description_lines: tuple[str, ...]
     read_only: str
+    #: its rclcpp::ParameterType, declared without a value when it is required
+    parameter_type: str = ''
 
 
 @dataclass(frozen=True)

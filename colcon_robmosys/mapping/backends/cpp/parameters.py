@@ -27,6 +27,15 @@ PARAMETER_TYPES = {
 }
 
 
+#: model type -> rclcpp::ParameterType (a parameter declared without a value)
+PARAMETER_TYPE_NAMES = {
+    'bool': 'PARAMETER_BOOL', 'int': 'PARAMETER_INTEGER', 'double': 'PARAMETER_DOUBLE',
+    'string': 'PARAMETER_STRING', 'bool[]': 'PARAMETER_BOOL_ARRAY',
+    'int[]': 'PARAMETER_INTEGER_ARRAY', 'double[]': 'PARAMETER_DOUBLE_ARRAY',
+    'string[]': 'PARAMETER_STRING_ARRAY', 'byte[]': 'PARAMETER_BYTE_ARRAY',
+}
+
+
 def cpp_value(value: Any, type_: str) -> str:
     """Write a parameter value as a C++ expression of its type."""
     if type_ == 'bool':
@@ -95,7 +104,8 @@ def cpp_parameter(parameter: Parameter, cls: str) -> CppParameter:
         read_only='true' if parameter.read_only else 'false',
         range=_range(parameter), attr=parameter.path[-1],
         rule=tuple(_rule_lines(parameter, cls, ctype)), for_each=parameter.for_each or '',
-        pattern=parameter.ros_name('{}') if parameter.for_each else '')
+        pattern=parameter.ros_name('{}') if parameter.for_each else '',
+        required=parameter.required, parameter_type=PARAMETER_TYPE_NAMES[parameter.type])
 
 
 def _rule_lines(parameter: Parameter, cls: str, ctype: str) -> list[str]:

@@ -123,6 +123,11 @@ def _node_imports(names: dict[InterfaceRef, str], plan: ComponentPlan,
         _add(modules, 'robmosys_runtime', {'map_entries'})
     if plan.parameters:
         _add(modules, 'rcl_interfaces.msg', {'ParameterDescriptor'})
+        if any(p.required for p in plan.parameters):
+            # declared by type, without a value, which configure needs
+            _add(modules, 'rclpy.parameter', {'Parameter'})
+            _add(modules, 'rclpy.lifecycle', {'LifecycleState', 'TransitionCallbackReturn'})
+            _add(modules, 'robmosys_runtime', {'required_set'})
         for parameter in plan.parameters:
             if parameter.range is not None:
                 _add(modules, 'rcl_interfaces.msg', {
@@ -255,7 +260,8 @@ def _parameter(parameter: Parameter) -> PyParameter:
                  parameter.description),
         read_only=parameter.read_only, range=_range(parameter),
         attr=parameter.path[-1], rule=_rule(parameter), for_each=parameter.for_each or '',
-        pattern=parameter.ros_name('{}') if parameter.for_each else '')
+        pattern=parameter.ros_name('{}') if parameter.for_each else '',
+        required=parameter.required)
 
 
 def _rule(parameter: Parameter) -> tuple[str, ...]:

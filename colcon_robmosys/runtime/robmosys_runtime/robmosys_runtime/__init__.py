@@ -23,7 +23,7 @@ if TYPE_CHECKING:
     from robmosys_runtime.main import executor_threads, run  # noqa: F401
     from robmosys_runtime.node import ComponentNode  # noqa: F401
     from robmosys_runtime.parameters import (  # noqa: F401
-        map_entries, ParameterRule, ParameterRules)
+        map_entries, ParameterRule, ParameterRules, required_set)
     from robmosys_runtime.ports import ActionClientPort, QueryClient, wait_for  # noqa: F401
 
 __version__ = '0.1.0'
@@ -34,6 +34,7 @@ _MODULES = {
     'EventActivation': 'events', 'EventClient': 'events', 'EventServer': 'events',
     'ParameterRule': 'parameters', 'ParameterRules': 'parameters', 'QueryClient': 'ports',
     'copy_fields': 'events', 'executor_threads': 'main', 'map_entries': 'parameters',
+    'required_set': 'parameters',
     'run': 'main', 'wait_for': 'ports',
 }
 

@@ -23,9 +23,12 @@ import os
 import signal
 import sys
 import threading
-from typing import Any, Dict, List, Optional, Sequence
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from ament_index_python.packages import get_package_share_directory
+from robmosys_runtime.arguments import (
+    any_given, ArgumentError, ARGUMENTS, log_level, moved_description, node_values,
+    normalized_namespace, sim_time, temporary, written)
 from robmosys_runtime.locations import resolve_locations
 from robmosys_runtime.output import say
 from robmosys_runtime.processes import NotInstalled, plan_processes, Processes
@@ -80,6 +83,14 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     parser.add_argument('--check-wait', type=float, default=10.0, metavar='SECONDS',
                         help='with --check: seconds to wait for the nodes of the model, and '
                         'at most to listen for silent ports')
+    # the launch arguments of the system's launch files, with the same meaning
+    parser.add_argument('--use-sim-time', nargs='?', const='true', metavar='true|false',
+                        help=ARGUMENTS['use_sim_time'][1] + ' (default: as the system says; '
+                        'alone: true)')
+    parser.add_argument('--log-level', metavar='LEVEL', help=ARGUMENTS['log_level'][1])
+    parser.add_argument('--namespace', default='', help=ARGUMENTS['namespace'][1])
+    parser.add_argument('--params-file', default='', metavar='FILE',
+                        help=ARGUMENTS['params_file'][1])
     parser.add_argument('--description', default=description_file, help=argparse.SUPPRESS)
     # ros2 launch may hand the manager ROS arguments: rclpy reads those
     args = parser.parse_args(without_ros_args(list(sys.argv[1:] if argv is None else argv)))
@@ -87,6 +98,11 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
         description = resolve_locations(json.load(stream))
     package = description['package']
     params_file = os.path.join(get_package_share_directory(package), description['params_file'])
+    try:
+        description, params_file = apply_arguments(description, params_file, args)
+    except ArgumentError as error:
+        say('error', f'{error}; nothing was started')
+        return 2
     if args.host:
         return run_host(description, args, params_file)
     if args.check:
@@ -110,8 +126,10 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     from robmosys_runtime.announce import announce_system
     from robmosys_runtime.manager import Manager, report, serve
 
-    rclpy.init(args=['--ros-args', '-r', f'__node:={package}_bringup'])
-    node = rclpy.create_node(f'{package}_bringup')
+    rclpy.init(args=['--ros-args', '-r', f'__node:={package}_bringup',
+                     *description.get('ros_arguments', ())])
+    node = rclpy.create_node(f'{package}_bringup',
+                             namespace=description.get('namespace') or None)
     announce_system(node, package)
     executor = MultiThreadedExecutor(num_threads=4)
     executor.add_node(node)
@@ -158,6 +176,39 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
         node.destroy_node()
         rclpy.try_shutdown()
     return status if args.exit_on_failure else 0
+
+
+def apply_arguments(description: Dict[str, Any], params_file: str,
+                    args: argparse.Namespace) -> Tuple[Dict[str, Any], str]:
+    """
+    Return the description and the parameter file for the options of the launch arguments.
+
+    With --namespace, every name of the description is moved, and the moved
+    description is written to a file of its own for the processes that read
+    it (``args.description``); the parameter file is the system's, or one
+    made for --namespace, --use-sim-time and --params-file.
+    """
+    where = normalized_namespace(args.namespace)
+    level = log_level(args.log_level)
+    operator = os.path.expanduser(args.params_file)
+    if operator and not os.path.isfile(operator):
+        raise ArgumentError(f'--params-file {args.params_file!r}: no such file')
+    description = moved_description(description, where)
+    simulated = sim_time(args.use_sim_time)
+    if any_given(where, simulated, operator):
+        values = node_values([i['fqn'] for i in description['instances']], params_file,
+                             where, simulated, operator)
+        params_file = written(values)
+        # the conformance watch expects the values the nodes are given
+        description = dict(description, instances=[dict(i, parameters=[
+            dict(p, value=values[i['fqn']].get(p['name'], p['value']))
+            for p in i['parameters']]) if 'parameters' in i else i
+            for i in description['instances']])
+    if level:
+        description = dict(description, ros_arguments=['--log-level', level])
+    if where or level or operator or simulated is not None:
+        args.description = temporary(json.dumps(description), 'robmosys_bringup_', '.json')
+    return description, params_file
 
 
 def not_installed(error: NotInstalled) -> int:

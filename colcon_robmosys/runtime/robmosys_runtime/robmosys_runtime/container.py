@@ -3,13 +3,24 @@
 """
 Several Python instances of a system in one process (``processes: shared``).
 
-``python -m robmosys_runtime.container DESCRIPTION PARAMS_FILE INSTANCE...``
+``python -m robmosys_runtime.container [--activate] DESCRIPTION PARAMS_FILE INSTANCE...
+[--ros-args ...]``
 creates the node of each instance from its component's class, with the name,
 namespace, remappings and parameter file the launch files would give it, and
 spins them all on one executor (:func:`run_nodes`): the one the system names for
 its shared processes, or the most capable one its instances need. Starting a
 Python node costs most of its start-up time in the interpreter and rclpy:
 one process for many instances starts a large system several times faster.
+
+With ``--activate`` (what ``bringup`` and ``<system>.launch.py`` start, where
+the system manager brings the system up) it also configures and activates
+each managed instance whose predecessors (``after``) it activated itself, in
+the model's order, through rclpy's own transitions, before it serves any
+request: the manager then finds them active with one ``get_state`` each, and
+does not take each through two transitions of the lifecycle services (two
+calls per instance, each waiting for the service to be discovered, were what
+the manager added to the floor, issue 28). An instance that fails a
+transition here is left where it is: the manager takes it up, and reports it.
 """
 
 from __future__ import annotations
@@ -17,8 +28,9 @@ from __future__ import annotations
 import importlib
 import json
 import sys
-from typing import Any, Callable, Dict, List, Optional
+from typing import Any, Callable, cast, Dict, List, Optional
 
+from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
 from rclpy.node import Node
 from robmosys_runtime.main import run_nodes
 from robmosys_runtime.processes import node_arguments
@@ -37,9 +49,34 @@ def node_factory(instance: Dict[str, Any], params_file: str) -> Callable[[], Nod
     return create
 
 
+def activate_in_order(instances: List[Dict[str, Any]], nodes: List[Node]) -> List[str]:
+    """
+    Configure and activate the managed instances whose predecessors are active here.
+
+    ``instances`` are in activation order, each with its node. Return the
+    instances made active.
+    """
+    active: List[str] = []
+    for instance, node in zip(instances, nodes):
+        if not instance.get('managed') or not instance.get('lifecycle', True) or \
+                not all(a in active for a in instance.get('after', ())):
+            continue
+        # a managed instance with a lifecycle: its node is a LifecycleNode
+        lifecycle = cast(LifecycleNode, node)
+        if lifecycle.trigger_configure() == TransitionCallbackReturn.SUCCESS and \
+                lifecycle.trigger_activate() == TransitionCallbackReturn.SUCCESS:
+            active.append(instance['instance'])
+    return active
+
+
 def main(argv: Optional[List[str]] = None) -> int:
     """Run the instances named on the command line; return the exit status."""
-    description_file, params_file, *names = sys.argv[1:] if argv is None else argv
+    args = list(sys.argv[1:] if argv is None else argv)
+    # what follows --ros-args is the process's (--log-level), for rclpy.init
+    ros_arguments = args[args.index('--ros-args'):] if '--ros-args' in args else []
+    args = args[:len(args) - len(ros_arguments)]
+    activate = args[:1] == ['--activate']
+    description_file, params_file, *names = args[1:] if activate else args
     with open(description_file, encoding='utf-8') as stream:
         description = json.load(stream)
     instances = {i['instance']: i for i in description['instances']}
@@ -48,8 +85,12 @@ def main(argv: Optional[List[str]] = None) -> int:
         print(f"container: error: not Python instances of the system: {', '.join(unknown)}"
               if unknown else 'container: error: no instance named', file=sys.stderr)
         return 2
-    return run_nodes([node_factory(instances[n], params_file) for n in names],
-                     executor_name=description.get('executors', {}).get('python'))
+    chosen = [instances[n] for n in names]
+    return run_nodes([node_factory(i, params_file) for i in chosen],
+                     executor_name=description.get('executors', {}).get('python'),
+                     args=['container', *ros_arguments] if ros_arguments else None,
+                     before_spin=(lambda nodes: activate_in_order(chosen, nodes))
+                     if activate else None)
 
 
 if __name__ == '__main__':

@@ -107,7 +107,8 @@ def run(node_factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
 
 
 def run_nodes(node_factories: Sequence[Callable[[], Node]],
-              args: Optional[List[str]] = None, executor_name: Optional[str] = None) -> int:
+              args: Optional[List[str]] = None, executor_name: Optional[str] = None,
+              before_spin: Optional[Callable[[List[Node]], Any]] = None) -> int:
     """
     Spin several nodes in one process until SIGINT or SIGTERM, then shut down cleanly.
 
@@ -116,6 +117,8 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
         a multi-threaded one, every node has the threads it would have in a
         process of its own (see :func:`executor_threads`), so a blocking call
         of one cannot starve the others.
+    :param before_spin: run once with the nodes when they are made, before any
+        callback is.
     Return the exit status (0).
     """
     signal.signal(signal.SIGINT, _interrupted)
@@ -125,6 +128,8 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     # first nodes of a 50-node process came up later, not sooner (each node
     # added woke the executor to gather every entity again, under the GIL)
     nodes = [factory() for factory in node_factories]
+    if before_spin is not None:
+        before_spin(nodes)
     executor = make_executor(executor_kind(nodes, executor_name), nodes)
     for node in nodes:
         executor.add_node(node)

@@ -180,7 +180,9 @@ class Manager:
     def _load(self, group: str) -> None:
         """Load the C++ instances into their container, in the background."""
         def load() -> None:
-            container = '/' + container_node(self.description['package'])
+            # moved with the system by bringup --namespace
+            container = self.description.get('namespace', '') + '/' + container_node(
+                self.description['package'])
             failed = load_into(self.node, container,
                                [self.instances[n] for n in self.groups[group][0]],
                                self._params_file, self._args.start_timeout)
@@ -304,6 +306,9 @@ class Manager:
         if self.stopping.wait(self._args.respawn_delay):
             return
         names, args = self.groups[group]
+        if not self.up:
+            # brought down by an operator: the shared process is not to bring itself up
+            args = [a for a in args if a != '--activate']
         self.processes.start(group, args)
         if group == CPP_GROUP:
             self._load(group)

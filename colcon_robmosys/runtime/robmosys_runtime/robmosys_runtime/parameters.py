@@ -127,3 +127,13 @@ def map_entries(node: Node, array: str, patterns: Sequence[str]) -> List[str]:
             raise ValueError(f"parameter '{array}': {problem}")
         seen.add(entry)
     return entries
+
+
+def required_set(node: Node, names: Sequence[str]) -> bool:
+    """Tell whether each parameter declared without a value has one; log each that has none."""
+    unset = [n for n in names if node.get_parameter_or(n).type_ == Parameter.Type.NOT_SET]
+    for name in unset:
+        node.get_logger().error(
+            f"configure failed: parameter '{name}' has no value (it has no default: set it in "
+            f'a parameter file, or with -p {name}:=<value>)')
+    return not unset

@@ -22,6 +22,7 @@ import time
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 from ament_index_python.packages import get_package_prefix, PackageNotFoundError
+from robmosys_runtime.output import say
 
 #: seconds each process has to end after SIGINT, before SIGKILL
 STOP_TIMEOUT = 10.0
@@ -122,10 +123,12 @@ class Processes:
                 except ProcessLookupError:
                     pass
         deadline = time.monotonic() + timeout
-        for process in self._processes.values():
+        for name, process in self._processes.items():
             try:
                 process.wait(max(0.0, deadline - time.monotonic()))
             except subprocess.TimeoutExpired:
+                # never expected: a process ends within a few seconds of SIGINT
+                say('error', f'{name} did not end within {timeout:g} s of SIGINT: SIGKILL')
                 self.kill()
 
     def kill(self) -> None:
@@ -189,6 +192,17 @@ CONTAINERS = {'events': 'component_container_event',
               'multi-threaded': 'component_container_mt'}
 
 
+def container_executable(description: Dict[str, Any]) -> str:
+    """Return the rclcpp_components container of the system's C++ executor (its file name)."""
+    executor = description.get('executors', {}).get('cpp', 'multi-threaded')
+    folder = os.path.join(get_package_prefix('rclcpp_components'), 'lib', 'rclcpp_components')
+    if not os.path.exists(os.path.join(folder, CONTAINERS[executor])):
+        # rclcpp_components before component_container_event (Kilted's
+        # 29.x has none): one thread, as the events executor has
+        return CONTAINERS['single-threaded']
+    return CONTAINERS[executor]
+
+
 def container_node(package: str) -> str:
     """Return the node name of the component container of a system's C++ instances."""
     return f'{package}_container'
@@ -219,6 +233,8 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
     if loaded_here:
         needs['rclcpp_components'] = loaded_here
     _check_installed(needs)
+    # what bringup's options give every process (--log-level)
+    ros_arguments = list(description.get('ros_arguments', ()))
     groups: Groups = {}
     together = []
     loaded = []
@@ -229,24 +245,26 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
             loaded.append(instance['instance'])
         else:
             groups[instance['instance']] = (
-                [instance['instance']], command(instance, params_file))
+                [instance['instance']], command(instance, params_file) + ros_arguments)
     if together:
         # one process, not one per CPU: two made 50 nodes up in 1.7 s, one in
         # 1.2 s (each process is a DDS participant the others discover)
+        # on the manager's host, the process brings up what it can by itself
+        # (robmosys_runtime.container); the manager finds those active
         groups['python instances' + (f' on {host}' if host else '')] = (together, [
-            sys.executable, '-m', 'robmosys_runtime.container', description_file,
-            params_file, *together])
+            sys.executable, '-m', 'robmosys_runtime.container',
+            *([] if host else ['--activate']), description_file, params_file, *together] +
+            (['--ros-args', *ros_arguments] if ros_arguments else []))
     if loaded:
         # rclcpp_components' container of the system's executor; the manager loads the nodes
-        executor = description.get('executors', {}).get('cpp', 'multi-threaded')
-        folder = os.path.join(get_package_prefix('rclcpp_components'), 'lib',
-                              'rclcpp_components')
-        container = os.path.join(folder, CONTAINERS[executor])
-        if not os.path.exists(container):
-            # rclcpp_components before component_container_event (Kilted's
-            # 29.x has none): one thread, as the events executor has
-            container = os.path.join(folder, CONTAINERS['single-threaded'])
         groups[CPP_GROUP] = (loaded, [
-            container,
-            '--ros-args', '-r', f"__node:={container_node(description['package'])}"])
+            os.path.join(get_package_prefix('rclcpp_components'), 'lib', 'rclcpp_components',
+                         container_executable(description)),
+            '--ros-args', '-r', f"__node:={container_node(description['package'])}",
+            *_container_namespace(description), *ros_arguments])
     return groups
+
+
+def _container_namespace(description: Dict[str, Any]) -> List[str]:
+    """Return the remapping that moves the C++ container with its system (bringup --namespace)."""
+    return ['-r', f"__ns:={description['namespace']}"] if description.get('namespace') else []

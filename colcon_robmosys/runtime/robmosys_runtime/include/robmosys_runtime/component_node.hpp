@@ -139,6 +139,12 @@ protected:
     declare_parameter("robmosys.ports", rclcpp::ParameterValue(names), descriptor, true);
   }
 
+  /// Name a parameter declared without a value: the node does not configure without one.
+  void require_parameter(const std::string & name)
+  {
+    required_.push_back(name);
+  }
+
   /// Set the functions a transition ("on_configure", "on_activate", ...) runs.
   void set_lifecycle(const std::string & transition, std::function<void()> functions)
   {
@@ -271,6 +277,9 @@ protected:
 
   CallbackReturn on_configure(const rclcpp_lifecycle::State &) override
   {
+    if (!required_set()) {
+      return CallbackReturn::FAILURE;
+    }
     try {
       create_ports();
       run_lifecycle("on_configure");
@@ -366,6 +375,23 @@ private:
     RCLCPP_ERROR(get_logger(), "activity %s failed: %s", activity.c_str(), what);
   }
 
+  /// Tell whether every required parameter has a value; log each that has none.
+  bool required_set()
+  {
+    bool set = true;
+    for (const auto & name : required_) {
+      try {
+        get_parameter(name);
+      } catch (const rclcpp::exceptions::ParameterUninitializedException &) {
+        RCLCPP_ERROR(
+          get_logger(), "configure failed: parameter '%s' has no value (it has no default: "
+          "set it in a parameter file, or with -p %s:=<value>)", name.c_str(), name.c_str());
+        set = false;
+      }
+    }
+    return set;
+  }
+
   void run_lifecycle(const std::string & transition)
   {
     auto functions = lifecycle_.find(transition);
@@ -401,6 +427,7 @@ private:
   std::map<std::string, rclcpp::CallbackGroup::SharedPtr> activities_;
   std::map<std::string, rclcpp::CallbackGroup::SharedPtr> own_groups_;
   std::map<std::string, std::function<void()>> lifecycle_;
+  std::vector<std::string> required_;
   std::vector<rclcpp::TimerBase::SharedPtr> timers_;
   std::vector<std::shared_ptr<rclcpp_lifecycle::ManagedEntityInterface>> publishers_;
   std::vector<std::function<void()>> releasers_;

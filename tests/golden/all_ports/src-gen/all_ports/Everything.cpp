@@ -270,9 +270,12 @@ Everything::Everything(
     rcl_interfaces::msg::ParameterDescriptor descriptor;
     descriptor.description = "";
     descriptor.read_only = false;
-    std::vector<std::string> default_value;
-    declare_parameter<std::vector<std::string>>("empty", default_value, descriptor);
+    // no default: the node does not configure without a value
+    declare_parameter(
+      "empty",
+      rclcpp::ParameterType::PARAMETER_STRING_ARRAY, descriptor);
   }
+  require_parameter("empty");
   add_activity("Periodic");
   add_activity("OnTick");
   add_activity("Serve");

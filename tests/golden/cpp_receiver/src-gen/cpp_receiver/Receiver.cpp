@@ -36,6 +36,11 @@ Receiver::Parameters::Parameters(rclcpp_lifecycle::LifecycleNode & node)
 {
 }
 
+std::string Receiver::Parameters::station() const
+{
+  return node_.get_parameter("station").as_string();
+}
+
 Receiver::Receiver(const rclcpp::NodeOptions & options)
 : Receiver("Receiver", options)
 {
@@ -51,6 +56,16 @@ Receiver::Receiver(
     "cpp_receiver", {
       "sMap",
     });
+  {
+    rcl_interfaces::msg::ParameterDescriptor descriptor;
+    descriptor.description = "The name of the station the maps arrive at.";
+    descriptor.read_only = false;
+    // no default: the node does not configure without a value
+    declare_parameter(
+      "station",
+      rclcpp::ParameterType::PARAMETER_STRING, descriptor);
+  }
+  require_parameter("station");
   add_activity("Receive");
 }
 

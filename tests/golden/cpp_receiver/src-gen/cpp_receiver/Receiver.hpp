@@ -30,6 +30,9 @@ public:
 public:
     explicit Parameters(rclcpp_lifecycle::LifecycleNode & node);
 
+    /// The name of the station the maps arrive at.
+    std::string station() const;
+
 private:
     rclcpp_lifecycle::LifecycleNode & node_;
   };

@@ -1,0 +1,204 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""The process layout of a system, the same through bringup and its launch files.
+
+With ``processes: shared`` (the default from 20 instances on a host) the
+Python instances of a launch file share one process and the C++ instances of
+the manager's host one component container, as ``bringup`` runs them; Ctrl-C
+ends every process of a 20-instance system within 5 s, with another system
+loading the machine, and never needs SIGKILL. The launch files run for real
+in tests/test_launch_ros.py (launch_ros is not on PyPI).
+"""
+
+from __future__ import annotations
+
+import ast
+import contextlib
+import json
+import os
+from pathlib import Path
+import re
+import shutil
+import signal
+import sys
+import time
+from typing import Iterator
+
+import pytest
+import yaml
+
+from colcon_robmosys.devtools.ros_env import background, free_domain_id
+from colcon_robmosys.devtools.system import wait_until
+from colcon_robmosys.generators import generate_package, plan_package
+from colcon_robmosys.mapping.launch import SHARED_FROM
+from conftest import BuiltWorkspace, colcon, requires_ros, ros_missing_reason, TEST_WORKSPACE
+from harness.launch_files import read_launch_file
+
+#: seconds Ctrl-C may take to end every process of a system (issue 28)
+CTRL_C_BOUND = 5.0
+#: the environment variable that marks the processes of one run
+MARKER = 'ROBMOSYS_TEST_RUN'
+
+
+def crowd_model(instances: int, cpp: bool = False, processes: str = '') -> dict:
+    """Return a system of publisher and subscriber pairs of test_workspace (C++: one pair)."""
+    count = instances // 2
+    pairs = [(f'pub_{i}', 'publisher') for i in range(count - cpp)]
+    pairs += [('pub_cpp', 'cpp_publisher')] if cpp else []
+    body = {'package': 'crowd_system', 'name': 'Crowd', 'license': 'Apache-2.0',
+            'maintainers': [{'name': 'Test Team', 'email': 'test@example.com'}],
+            'instances': {}, 'connections': []}
+    for pub, component in pairs:
+        sub = pub.replace('pub_', 'sub_')
+        body['instances'][pub] = {'component': component}
+        body['instances'][sub] = {
+            'component': 'cpp_subscriber' if component.startswith('cpp') else 'subscriber'}
+        body['connections'].append({'from': f'{pub}.pMap', 'to': f'{sub}.rMap'})
+    if processes:
+        body['processes'] = processes
+    return {'robmosys': 1, 'systems': [body]}
+
+
+def _generate(tmp_path: Path, model: dict) -> Path:
+    src = tmp_path / 'src'
+    shutil.copytree(TEST_WORKSPACE / 'src', src, ignore=shutil.ignore_patterns('__pycache__'))
+    (src / 'crowd_system').mkdir()
+    (src / 'crowd_system' / 'robmosys.yaml').write_text(yaml.safe_dump(model, sort_keys=False))
+    out = tmp_path / 'out'
+    from test_systems import _load
+    generate_package(plan_package(_load(src), 'crowd_system'), out)
+    return out
+
+
+def _calls(path: Path, name: str) -> list[ast.Call]:
+    tree = ast.parse(path.read_text())
+    return [n for n in ast.walk(tree) if isinstance(n, ast.Call) and ast.unparse(n.func) == name]
+
+
+def test_a_shared_system_starts_processes_as_bringup_does(tmp_path):
+    out = _generate(tmp_path, crowd_model(6, cpp=True, processes='shared'))
+    description = json.loads((out / 'bringup.json').read_text())
+    assert description['processes'] == 'shared'
+    python = [i['instance'] for i in description['instances'] if i['python_class']]
+    cpp = [i['instance'] for i in description['instances'] if i['plugin']]
+    assert python and cpp
+    for name in ('crowd_system.launch.py', 'crowd_system.nodes.launch.py'):
+        launch = out / 'launch' / name
+        # no instance in a process of its own
+        assert read_launch_file(launch, out) == []
+        [shared] = _calls(launch, 'ExecuteProcess')
+        cmd = [ast.unparse(e) for e in next(k.value for k in shared.keywords
+                                            if k.arg == 'cmd').elts]
+        # python -m robmosys_runtime.container [--activate] DESCRIPTION PARAMS INSTANCE...
+        # --ros-args ..., as bringup; the file with the manager has the process bring up
+        # what it can; the description, the parameters and the ROS arguments are those of
+        # the launch arguments (robmosys_runtime.launching)
+        assert ("'--activate'" in cmd) == (name == 'crowd_system.launch.py')
+        cmd = [c for c in cmd if c != "'--activate'"]
+        assert cmd[:5] == ['sys.executable', "'-m'", "'robmosys_runtime.container'",
+                           'arguments.description', 'arguments.params_file']
+        assert cmd[-2:] == ["'--ros-args'", '*arguments.ros_arguments']
+        assert [ast.literal_eval(e) for e in cmd[5:-2]] == python
+        [container] = _calls(launch, 'ComposableNodeContainer')
+        assert "name='crowd_system_container'" in ast.unparse(container)
+        loaded = {ast.literal_eval(next(k.value for k in c.keywords if k.arg == 'name'))
+                  for c in _calls(launch, 'ComposableNode')}
+        assert loaded == set(cpp)
+    # one instance alone: a process of its own
+    [node] = read_launch_file(out / 'launch' / 'crowd_system.pub_cpp.nodes.launch.py', out)
+    assert node.name == 'pub_cpp'
+
+
+def test_systems_share_processes_by_default_from_a_size_on(tmp_path):
+    def layout(model: dict) -> str:
+        shutil.rmtree(tmp_path, ignore_errors=True)
+        tmp_path.mkdir()
+        out = _generate(tmp_path, model)
+        return json.loads((out / 'bringup.json').read_text())['processes']
+    assert SHARED_FROM == 20
+    assert layout(crowd_model(SHARED_FROM)) == 'shared'
+    assert layout(crowd_model(SHARED_FROM - 2)) == 'per_instance'
+    # what the model says wins
+    assert layout(crowd_model(SHARED_FROM, processes='per_instance')) == 'per_instance'
+    assert layout(crowd_model(4, processes='shared')) == 'shared'
+
+
+def build_crowd(root: Path, instances: int, cpp: bool = False) -> BuiltWorkspace:
+    """Build crowd_system with the packages it needs of a copy of test_workspace."""
+    src = root / 'src'
+    shutil.copytree(TEST_WORKSPACE / 'src', src, ignore=shutil.ignore_patterns('__pycache__'))
+    (src / 'crowd_system').mkdir()
+    (src / 'crowd_system' / 'robmosys.yaml').write_text(
+        yaml.safe_dump(crowd_model(instances, cpp), sort_keys=False))
+    result = colcon(['build', '--packages-up-to', 'crowd_system'], cwd=root)
+    assert result.returncode == 0, result.stdout + result.stderr
+    return BuiltWorkspace(root, result.stdout)
+
+
+def marked_env(built: BuiltWorkspace, domain_id: int) -> dict:
+    """Return the environment of a built workspace, with a marker of this run."""
+    env = built.env(domain_id)
+    env[MARKER] = f'{os.getpid()}-{time.monotonic_ns()}'
+    return env
+
+
+def processes_marked(marker: str) -> list[int]:
+    """Return the processes whose environment holds a run's marker."""
+    wanted = f'{MARKER}={marker}'.encode()
+    found = []
+    for entry in Path('/proc').iterdir():
+        with contextlib.suppress(OSError):
+            if entry.name.isdigit() and \
+                    wanted in (entry / 'environ').read_bytes().split(b'\0'):
+                found.append(int(entry.name))
+    return found
+
+
+@contextlib.contextmanager
+def loaded_machine(command: list[str], env: dict) -> Iterator[None]:
+    """Run another system beside the test's, in a domain of its own, until the block ends."""
+    other = dict(env, ROS_DOMAIN_ID=str(free_domain_id()), **{MARKER: 'load'})
+    with background(command, env=other, stop_timeout=30):
+        yield
+
+
+def ctrl_c(process, marker: str) -> tuple[float, str]:
+    """Send SIGINT to a process group; return the seconds until every marked process ended."""
+    signalled = time.monotonic()
+    os.killpg(process.proc.pid, signal.SIGINT)
+    assert wait_until(lambda: not processes_marked(marker), timeout=60, period=0.02), \
+        processes_marked(marker)
+    return time.monotonic() - signalled, process.output()
+
+
+@pytest.fixture(scope='module')
+def crowd_built(tmp_path_factory) -> BuiltWorkspace:
+    """Return crowd_system of 20 Python instances (shared by default), built."""
+    if ros_missing_reason():
+        pytest.skip(ros_missing_reason())
+    return build_crowd(tmp_path_factory.mktemp('crowd'), 20)
+
+
+@pytest.mark.integration
+@requires_ros
+def test_ctrl_c_of_bringup_ends_20_shared_instances_within_bounds_under_load(
+        crowd_built, domain_id):
+    env = marked_env(crowd_built, domain_id)
+    bringup = [sys.executable,
+               str(crowd_built.install / 'crowd_system' / 'lib' / 'crowd_system' / 'bringup')]
+    with loaded_machine(bringup, env), background(bringup, env=env, stop_timeout=30) as run:
+        assert wait_until(lambda: 'bringup: 20 of 20 managed instances active' in
+                          run.output(), timeout=180), run.output()
+        assert wait_until(lambda: len(re.findall(r'got map data', run.output())) >= 10,
+                          timeout=30), run.output()
+        # the process brought its instances up itself: the manager found them active
+        assert not re.search(r'instance \w+ is active', run.output()), run.output()
+        # one process for the twenty nodes, beside bringup
+        assert [p for p in processes_marked(env[MARKER])
+                if b'robmosys_runtime.container' in Path(f'/proc/{p}/cmdline').read_bytes()]
+        assert len(processes_marked(env[MARKER])) == 2, processes_marked(env[MARKER])
+        took, output = ctrl_c(run, env[MARKER])
+        assert run.proc.wait(timeout=1) == 0, output
+    assert took <= CTRL_C_BOUND, f'{took:.2f} s:\n{output}'
+    assert 'SIGKILL' not in output and 'Traceback' not in output, output
+    assert len(re.findall(r'bringup: cleanup \w+', output)) == 20, output
