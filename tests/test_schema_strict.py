@@ -124,6 +124,7 @@ CHECK_ONLY = {
     'system_query_to_action': _CROSS,
     'system_query_type_mismatch': _CROSS,
     'system_quiet_not_a_provided_push_port': _CROSS,
+    'system_required_parameter_unset': _CROSS,
     'system_required_port_two_providers': _CROSS,
     'system_send_qos_writer_is_required': _CROSS,
     'system_subsystem_cycle': _CROSS,

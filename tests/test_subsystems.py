@@ -109,7 +109,9 @@ def test_the_system_package_starts_every_node_under_its_name(tmp_path):
     assert {(i['instance'], i['fqn']) for i in description['instances']} == {
         (instance, fqn) for instance, (fqn, _, _) in nodes.items()}
     launch = (out / 'launch' / 'two_robots.robot2.publisher.launch.py').read_text()
-    assert "name='publisher'" in launch and "namespace='/fleet/robot2'" in launch
+    # in the namespace the launch argument 'namespace' moves the system to
+    assert "name='publisher'" in launch and "namespace=arguments.moved('/fleet/robot2')" \
+        in launch
 
 
 @pytest.mark.integration

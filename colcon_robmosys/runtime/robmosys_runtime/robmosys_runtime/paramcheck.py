@@ -147,8 +147,6 @@ class SystemParameters:
         return problems
 
 
-
-
 def _unknown(nodes: Dict[str, Dict[str, Dict[str, Any]]], entry: NodeEntry, value: FileValue,
              matched: List[str], wildcard: bool) -> Problem:
     names = sorted({n for fqn in matched for n, d in nodes[fqn].items()
@@ -160,6 +158,7 @@ def _unknown(nodes: Dict[str, Dict[str, Dict[str, Any]]], entry: NodeEntry, valu
              if wildcard else f'node {matched[0]} has no')
     return Problem(*value.at, f"{whose} parameter '{value.name}'{near} "
                    f'(its parameters: {_listed(names)})')
+
 
 def value_problems(value: FileValue, declared: Dict[str, Any], running: bool
                    ) -> List[Tuple[Tuple[int, int], str, str]]:
