@@ -14,6 +14,7 @@ from pathlib import Path
 import re
 import shutil
 import signal
+import subprocess
 import sys
 
 import pytest
@@ -223,7 +224,7 @@ for argument in description.get_launch_arguments():
 def test_show_args_lists_the_arguments_with_their_descriptions(
         test_workspace_built, launch_env, launch_file):
     share = test_workspace_built.share('pubsub_system')
-    shown = __import__('subprocess').run(
+    shown = subprocess.run(
         [sys.executable, '-c', SHOW_ARGS, str(share / 'launch' / launch_file)],
         env=launch_env, capture_output=True, text=True, timeout=60, check=True).stdout
     arguments = {line.split('|')[0]: line.split('|')[1:] for line in shown.splitlines()}
