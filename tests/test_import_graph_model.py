@@ -20,7 +20,8 @@ from colcon_robmosys.check import load_model_file
 from colcon_robmosys.importer.graph import import_graph
 from colcon_robmosys.importer.graph_read import Endpoint, GraphNode, GraphParameter
 from colcon_robmosys.importer.graph_yaml import Commented, dump
-from colcon_robmosys.importer.processes import NodeProcess, parse_command_line, process_of
+from colcon_robmosys.importer.processes import (
+    node_processes, NodeProcess, parse_command_line, process_of)
 
 COMPONENT = textwrap.dedent("""
     robmosys: 1
@@ -133,6 +134,30 @@ def test_command_lines_tell_package_executable_language_and_remappings(tmp_path:
     assert both is not None and both.executable == 'talker' and both.remappings == {}
     assert process_of([talker, NodeProcess('other', 'talker', 'python', 't', '/robot')],
                       't', '/robot') is None
+
+
+def test_processes_of_another_ros_domain_are_not_candidates(tmp_path: Path):
+    # two systems on one host, each in its own domain, both run a node /listener
+    ours = tmp_path / 'lib' / 'listener' / 'listener'
+    theirs = tmp_path / 'lib' / 'other_pkg' / 'listener'
+    for script in (ours, theirs):
+        script.parent.mkdir(parents=True)
+        script.write_text('#!/usr/bin/env python3\n', encoding='utf-8')
+    proc = tmp_path / 'proc'
+    for pid, script, environ in ((11, ours, b'ROS_DOMAIN_ID=7\0HOME=/x\0'),
+                                 (12, theirs, b'HOME=/x\0ROS_DOMAIN_ID=8\0'),
+                                 (13, theirs, b'HOME=/x\0')):
+        (proc / str(pid)).mkdir(parents=True)
+        (proc / str(pid) / 'cmdline').write_bytes(b'python3\0' + bytes(script) + b'\0')
+        (proc / str(pid) / 'environ').write_bytes(environ)
+    # a process whose environment is not readable stays a candidate
+    (proc / '14').mkdir()
+    (proc / '14' / 'cmdline').write_bytes(b'python3\0' + bytes(ours) + b'\0')
+    found = node_processes('7', proc)
+    assert [p.package for p in found] == ['listener', 'listener'], found
+    assert process_of(found, 'listener', '/') == NodeProcess('listener', 'listener', 'python')
+    # unset and empty are domain 0, as ROS 2 reads them
+    assert sorted(p.package for p in node_processes('', proc)) == ['listener', 'other_pkg']
 
 
 def test_hostile_text_reads_back_and_comments_stay_comments():

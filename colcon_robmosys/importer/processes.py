@@ -9,7 +9,9 @@ file on this host shows both in its command line:
 ``.../lib/<package>/<executable> --ros-args -r __node:=<name> -r <from>:=<to>``.
 A node is matched to a process by its name and namespace, and only where
 exactly one process matches; a node of another host, or started some other
-way, stays unknown.
+way, stays unknown. Processes of another ROS domain on this host are not in
+the graph read, and are not candidates (a node of the same name there would
+make the match ambiguous).
 """
 
 from __future__ import annotations
@@ -33,8 +35,12 @@ class NodeProcess:
     remappings: dict[str, str] = field(default_factory=dict)
 
 
-def node_processes(proc: Path = Path('/proc')) -> list[NodeProcess]:
-    """Return the processes of this host that run an executable of a ROS package."""
+def node_processes(domain: str, proc: Path = Path('/proc')) -> list[NodeProcess]:
+    """Return the processes of this host that run an executable of a ROS package.
+
+    :param domain: the ROS domain id whose processes count ('0' where the
+      environment sets none, as in ROS 2)
+    """
     found = []
     for entry in proc.iterdir() if proc.is_dir() else ():
         if not entry.name.isdigit():
@@ -44,9 +50,25 @@ def node_processes(proc: Path = Path('/proc')) -> list[NodeProcess]:
         except OSError:
             continue  # gone, or not ours to read
         process = parse_command_line(argv)
-        if process is not None:
+        if process is not None and _domain_of(entry) in (domain_id(domain), None):
             found.append(process)
     return found
+
+
+def domain_id(text: str) -> str:
+    """Return a ROS_DOMAIN_ID as ROS 2 reads it: empty or unset is 0."""
+    return text.strip() or '0'
+
+
+def _domain_of(entry: Path) -> str | None:
+    """Return the ROS domain id of a process, None if its environment is not readable."""
+    try:
+        environ = (entry / 'environ').read_bytes().split(b'\0')
+    except OSError:
+        return None
+    value = next((line[len(b'ROS_DOMAIN_ID='):] for line in environ
+                  if line.startswith(b'ROS_DOMAIN_ID=')), b'')
+    return domain_id(value.decode('utf-8', 'replace'))
 
 
 def parse_command_line(argv: list[str]) -> NodeProcess | None:

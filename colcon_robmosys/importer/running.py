@@ -41,7 +41,7 @@ def import_running_system(system: str, index: InterfaceIndex, *, namespace: str 
     announced = {node.parameter(COMPONENT) for node in nodes} - {None}
     components, external = _installed_components(index, announced)
     return import_graph(
-        nodes, system, components, external, node_processes(),
+        nodes, system, components, external, node_processes(domain),
         lambda package: _metadata(index, package),
         header=' '.join(f'Imported by colcon robmosys-import graph from the running ROS '
                         f'graph {where}'.split()) + '.',
