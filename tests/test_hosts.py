@@ -26,6 +26,7 @@ import time
 from typing import Any, Iterator
 
 import pytest
+from test_cpp_system import requires_rclcpp
 
 from colcon_robmosys.devtools.ros_env import Background, free_domain_id
 from colcon_robmosys.devtools.system import wait_until
@@ -162,6 +163,55 @@ def test_with_multicast_the_smoke_test_and_the_watch_pass_across_hosts(
         for robot in robots:
             assert _stopped_on_sigint(robot) == 0, system.output()
         assert 'Traceback' not in system.output(), system.output()
+
+
+#: mixed_system on two robots: robot1 runs every C++ instance in its component
+#: container, robot2 the Python ones in one process; data crosses both ways
+MIXED = 'mixed_system'
+MIXED_HOSTS = {'robot1': ('cpp_pub', 'cpp_sub', 'sender', 'receiver', 'server', 'client',
+                          'cpp_sensor', 'cpp_watcher'),
+               'robot2': ('py_pub', 'py_sub', 'py_client', 'py_sensor', 'py_watcher')}
+#: what each robot prints when data of the other reached it
+MIXED_CROSSED = {'robot1': (r'got map data: width \d+', r'event: level \d+'),
+                 'robot2': (r'got map data: width \d+', r'(blocking|callback) answer: ',
+                            r'event: level \d+')}
+
+
+@requires_rclcpp
+def test_a_cpp_container_on_a_robot_is_brought_up_and_down_by_the_manager_on_base(
+        network, test_workspace_built, tmp_path):
+    placed = _placed(test_workspace_built, MIXED, MIXED_HOSTS, tmp_path)
+    every = sorted(n for names in MIXED_HOSTS.values() for n in names)
+    with contextlib.ExitStack() as stack:
+        system = System(network, test_workspace_built, placed, stack, static_peers=False,
+                        package=MIXED)
+        robots = {h: system.start_host(h) for h in MIXED_HOSTS}
+        manager = system.start_manager()
+        assert wait_until(lambda: f'bringup: {len(every)} of {len(every)} managed instances '
+                          'active' in manager.output(), 120), system.output()
+        # robot1's C++ instances are nodes of one container process on robot1
+        containers = [pid for pid in network.pids('robot1')
+                      if b'component_container' in _cmdline(pid)]
+        assert len(containers) == 1, system.output()
+        for host, crossed in MIXED_CROSSED.items():
+            assert wait_until(lambda: all(re.search(c, robots[host].output())
+                                          for c in crossed), 30), \
+                f'{host} got no data of the other robot\n{system.output()}'
+        assert _stopped_on_sigint(manager) == 0, system.output()
+        steps = re.findall(r'bringup: (deactivate|cleanup) (\w+)', manager.output())
+        assert sorted(n for s, n in steps if s == 'cleanup') == every, system.output()
+        for robot in robots.values():
+            assert _stopped_on_sigint(robot) == 0, system.output()
+        # the container ended with its robot's bringup
+        assert wait_until(lambda: not network.pids('robot1'), 30), system.output()
+        assert 'Traceback' not in system.output(), system.output()
+
+
+def _cmdline(pid: int) -> bytes:
+    try:
+        return Path(f'/proc/{pid}/cmdline').read_bytes()
+    except OSError:
+        return b''
 
 
 @pytest.fixture(scope='module')
