@@ -90,6 +90,8 @@ class System:
         self.env = {h: network.env(h, base, static_peers) for h in network.hosts}
         self.hosts: dict[str, Background] = {}
         self.manager: Background | None = None
+        #: when a test cut a robot's link (time.monotonic())
+        self.cut = 0.0
 
     def bringup(self, host: str, *args: str) -> list[str]:
         """Return the command line of the system's bringup with the model of the test."""
@@ -262,7 +264,7 @@ def test_a_robot_whose_link_goes_down_is_reported_and_the_others_run_on(system):
     _up(system)
     assert system.manager is not None
     mark = len(system.manager.output())
-    cut = time.monotonic()
+    cut = system.cut = time.monotonic()
     system.network.set_link('robot1', up=False)
     assert wait_until(lambda: not _said_of(system.manager.output()[mark:], HOSTS['robot1'],
                                            'does not answer (heartbeat)'), 30, 0.05), \
@@ -284,6 +286,9 @@ def test_when_the_link_comes_back_its_instances_are_active_again_nothing_restart
     assert system.manager is not None
     mark = len(system.manager.output())
     robot2_mark = len(system.hosts['robot2'].output())
+    # a long loss: down past the lease, the hosts have forgotten each other's
+    # participants and discover them again (ROS_STATIC_PEERS: no multicast)
+    time.sleep(max(0.0, system.cut + netns.LEASE + 2.0 - time.monotonic()))
     system.network.set_link('robot1', up=True)
     assert wait_until(lambda: not _said_of(system.manager.output()[mark:], HOSTS['robot1'],
                                            'answers again (heartbeat)'), 60), system.output()
@@ -318,6 +323,25 @@ def test_a_robot_whose_bringup_is_killed_comes_back_to_the_state_of_the_system(s
     # robot2's instances were not brought up again
     assert _said_of(system.manager.output()[mark:], HOSTS['robot2'], 'is active') == \
         list(HOSTS['robot2']), system.output()
+
+
+def test_a_manager_killed_and_started_again_takes_the_running_instances_as_they_are(system):
+    # the operator's station dies (SIGKILL: no cleanup) while the robots run on;
+    # a new manager finds them active and brings nothing up again
+    _up(system)
+    assert system.manager is not None
+    os.kill(system.manager.proc.pid, signal.SIGKILL)
+    system.manager.proc.wait(timeout=30)
+    robot2 = system.hosts['robot2']
+    robot2_mark = len(robot2.output())
+    assert wait_until(lambda: _crossed(robot2.output()[robot2_mark:], FLOWING) == [], 30), \
+        f'without a manager, {_crossed(robot2.output()[robot2_mark:], FLOWING)} stopped\n' \
+        f'{system.output()}'
+    manager = system.start_manager()
+    _up(system)
+    assert ' is active' not in manager.output(), system.output()
+    assert set(system.report().values()) == {'active'}, system.output()
+    assert all(host.proc.poll() is None for host in system.hosts.values()), system.output()
 
 
 def test_ctrl_c_on_the_manager_brings_every_host_down_and_each_host_exits_0(system):

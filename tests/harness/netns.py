@@ -44,7 +44,13 @@ PREFIX = 'robmosys-hosts-'
 #: the subnet of the hosts (private, and only inside the namespaces)
 SUBNET = '10.213.0'
 
-#: a Fast DDS profile for one host: UDPv4 on its interfaces, no shared memory, no data sharing
+#: seconds after which a host's participant that was not heard from is forgotten by
+#: the others (Fast DDS's lease duration; its default is 20 s): a test that cuts a link
+#: for longer makes the hosts discover each other again, as a long loss of Wi-Fi does
+LEASE = 8
+
+#: a Fast DDS profile for one host: UDPv4 on its interfaces, no shared memory, no data
+#: sharing; the lease of LEASE, announced every LEASE / 4 s (Fast DDS: 20 s and 3 s)
 _PROFILE = """<?xml version="1.0" encoding="UTF-8"?>
 <!-- a host of tests/harness/netns.py ({address}): UDPv4 only, no shared memory -->
 <dds xmlns="http://www.eprosima.com">
@@ -57,6 +63,12 @@ _PROFILE = """<?xml version="1.0" encoding="UTF-8"?>
     </transport_descriptors>
     <participant profile_name="host_participant" is_default_profile="true">
       <rtps>
+        <builtin>
+          <discovery_config>
+            <leaseDuration><sec>{lease}</sec></leaseDuration>
+            <leaseAnnouncement><sec>{announcement}</sec></leaseAnnouncement>
+          </discovery_config>
+        </builtin>
         <userTransports>
           <transport_id>host_udp</transport_id>
         </userTransports>
@@ -203,7 +215,8 @@ class Network:
             _ip('-n', host.namespace, 'addr', 'add', f'{host.address}/24', 'dev', 'eth0')
             _ip('-n', host.namespace, 'link', 'set', 'eth0', 'up')
             (self._folder / f'{host.name}.xml').write_text(
-                _PROFILE.format(address=host.address), encoding='utf-8')
+                _PROFILE.format(address=host.address, lease=LEASE,
+                                announcement=LEASE // 4), encoding='utf-8')
 
     def close(self) -> None:
         """Kill every process of the hosts, remove the namespaces."""
