@@ -109,6 +109,32 @@ def test_a_shared_system_starts_processes_as_bringup_does(tmp_path):
     assert node.name == 'pub_cpp'
 
 
+def test_each_host_runs_its_cpp_instances_in_a_container_of_its_own(tmp_path):
+    model = crowd_model(8, cpp=True, processes='shared')
+    # the C++ pair on robot1, one Python pair on robot2, the rest on the manager's host
+    for name, instance in model['systems'][0]['instances'].items():
+        instance['host'] = {'pub_cpp': 'robot1', 'sub_cpp': 'robot1', 'pub_0': 'robot2',
+                            'sub_0': 'robot2'}.get(name, '')
+        if not instance['host']:
+            del instance['host']
+    out = _generate(tmp_path, model)
+    launch = out / 'launch'
+    # the robot's file loads its C++ instances into its container, as bringup --host does
+    [container] = _calls(launch / 'crowd_system.on_robot1.nodes.launch.py',
+                         'ComposableNodeContainer')
+    assert "name='crowd_system_robot1_container'" in ast.unparse(container)
+    loaded = {ast.literal_eval(next(k.value for k in c.keywords if k.arg == 'name'))
+              for c in _calls(launch / 'crowd_system.on_robot1.nodes.launch.py',
+                              'ComposableNode')}
+    assert loaded == {'pub_cpp', 'sub_cpp'}
+    # the other robot has Python instances only, in one process; the manager's host
+    # has no C++ instance left, so no container
+    assert not _calls(launch / 'crowd_system.on_robot2.nodes.launch.py',
+                      'ComposableNodeContainer')
+    assert len(_calls(launch / 'crowd_system.on_robot2.nodes.launch.py', 'ExecuteProcess')) == 1
+    assert not _calls(launch / 'crowd_system.nodes.launch.py', 'ComposableNodeContainer')
+
+
 def test_systems_share_processes_by_default_from_a_size_on(tmp_path):
     def layout(model: dict) -> str:
         shutil.rmtree(tmp_path, ignore_errors=True)

@@ -92,8 +92,11 @@ class LaunchFile:
     remote: tuple[SystemNode, ...] = ()
     #: whether the Python instances share one process (``processes: shared``)
     shared: bool = False
-    #: whether its C++ instances share a container, when shared (the manager's host)
+    #: whether its C++ instances share a container, when shared (the file of a host,
+    #: or the manager's: not the file of one instance)
     containers: bool = False
+    #: the host of the file's instances, '' for the manager's
+    host: str = ''
 
     @property
     def stem(self) -> str:
@@ -149,8 +152,9 @@ class LaunchFile:
 
     @property
     def container(self) -> str:
-        """Return the node name of the component container, as bringup names it."""
-        return f'{self.package}_container'
+        """Return the node name of the host's component container, as bringup names it."""
+        return f'{self.package}_{self.host}_container' if self.host else \
+            f'{self.package}_container'
 
     @property
     def node_classes(self) -> str:
@@ -209,17 +213,20 @@ def launch_files(system: System, nodes: tuple[SystemNode, ...],
     """Return the launch files of a system: every instance, each, each host."""
     local = tuple(n for n in nodes if not n.host)
     remote = tuple(n for n in nodes if n.host)
+    # each file: its suffix, its instances, those it activates on other hosts, what
+    # it starts, its host (None: one instance's file, which no container serves);
     # the system's files start the instances of the manager's host, and
     # activate those of every host
-    variants = [('', local, remote, f'every instance of the system {system.name}'
-                 + (' that runs on no host of its own' if remote else ''))]
+    Variant = tuple[str, tuple[SystemNode, ...], tuple[SystemNode, ...], str, str | None]
+    variants: list[Variant] = [('', local, remote, f'every instance of the system {system.name}'
+                                + (' that runs on no host of its own' if remote else ''), '')]
     variants += [(f'.{n.instance}', (n,), (), f'the instance {n.instance} '
-                  f'of the system {system.name}') for n in nodes]
+                  f'of the system {system.name}', None) for n in nodes]
     variants += [(f'.on_{host}', tuple(n for n in remote if n.host == host), (),
-                  f'the instances of the system {system.name} on the host {host}')
+                  f'the instances of the system {system.name} on the host {host}', host)
                  for host in unique(n.host for n in remote)]
     files = []
-    for suffix, selected, elsewhere, what in variants:
+    for suffix, selected, elsewhere, what, host in variants:
         # a file waits only for instances it activates itself: an instance
         # started by another file, or left unmanaged, would never be seen
         managed = {n.instance for n in selected + elsewhere if n.activate}
@@ -228,9 +235,9 @@ def launch_files(system: System, nodes: tuple[SystemNode, ...],
             return tuple(replace(n, activate_after=tuple(a for a in n.after if a in managed))
                          for n in chosen)
         # as bringup: the instances of one file share processes (one instance
-        # alone needs none), C++ ones a container on the manager's host only
+        # alone needs none), C++ ones a container of their host (not of one instance)
         files.append(LaunchFile(suffix, banner, system.package, PARAMS_FILE,
                                 waiting(selected), what, waiting(elsewhere),
                                 shared=process_layout(system) == 'shared' and len(selected) > 1,
-                                containers=not suffix))
+                                containers=host is not None, host=host or ''))
     return tuple(files)

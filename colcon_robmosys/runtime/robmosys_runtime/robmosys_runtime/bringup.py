@@ -31,7 +31,7 @@ from robmosys_runtime.arguments import (
     normalized_namespace, sim_time, temporary, written)
 from robmosys_runtime.locations import resolve_locations
 from robmosys_runtime.output import say
-from robmosys_runtime.processes import NotInstalled, plan_processes, Processes
+from robmosys_runtime.processes import CPP_GROUP, NotInstalled, plan_processes, Processes
 
 # rclpy is imported once the instances are starting: they start it too, in
 # parallel (see main)
@@ -137,6 +137,20 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     spinner.start()
     manager = Manager(node, description, params_file, args, processes)
     signalled = threading.Event()
+
+    def start(group: str) -> None:
+        processes.start(group, groups[group][1])
+        if group == CPP_GROUP:
+            # no manager on this host: its bringup loads the nodes into the container
+            threading.Thread(target=load, args=(groups[group][0],), daemon=True,
+                             name='load C++ instances').start()
+
+    def load(names: List[str]) -> None:
+        # rclpy, once the instances have started
+        from robmosys_runtime.loading import load_on_host
+        failed = load_on_host(description, args.host, names, params_file, args.start_timeout)
+        for name, why in sorted(failed.items()):
+            say('error', f'instance {name} {why}')
 
     def on_signal(signum: int, frame: Any) -> None:
         if signalled.is_set():
@@ -255,7 +269,7 @@ def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file:
     """
     try:
         groups = plan_processes(description, args.description, params_file, host=args.host,
-                                shared=args.processes, containers=False)
+                                shared=args.processes)
     except NotInstalled as error:
         return not_installed(error)
     if not groups:
@@ -270,13 +284,27 @@ def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file:
         if any(i.get('respawn') for i in description['instances'] if i['instance'] in names):
             say('error', f"{', '.join(names)} exited with code {code}: starting it again")
             if not stopping.wait(args.respawn_delay):
-                processes.start(group, groups[group][1])
+                start(group)
         else:
             say('error', f"{', '.join(names)} exited with code {code}")
 
     # started from the main thread, and again from the thread that watches them
     # (exited): both live as long as this bringup, and the instances end with it
     processes = Processes(exited, end_with_parent=True)
+
+    def start(group: str) -> None:
+        processes.start(group, groups[group][1])
+        if group == CPP_GROUP:
+            # no manager on this host: its bringup loads the nodes into the container
+            threading.Thread(target=load, args=(groups[group][0],), daemon=True,
+                             name='load C++ instances').start()
+
+    def load(names: List[str]) -> None:
+        # rclpy, once the instances have started
+        from robmosys_runtime.loading import load_on_host
+        failed = load_on_host(description, args.host, names, params_file, args.start_timeout)
+        for name, why in sorted(failed.items()):
+            say('error', f'instance {name} {why}')
 
     def on_signal(signum: int, frame: Any) -> None:
         if stopping.is_set():
@@ -287,8 +315,8 @@ def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file:
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, on_signal)
     try:
-        for group, (_, command_line) in groups.items():
-            processes.start(group, command_line)
+        for group in groups:
+            start(group)
         processes.watch()
         started = sorted(n for names, _ in groups.values() for n in names)
         say('info', f"host {args.host}: started {', '.join(started)}")

@@ -3,8 +3,9 @@
 """
 Load C++ instances into a component container, as launch_ros's LoadComposableNodes does.
 
-With ``processes: shared`` the C++ instances of the manager's host share one
-rclcpp_components container; the manager asks it to load each instance's node
+With ``processes: shared`` the C++ instances of each host share one
+rclcpp_components container; the manager (on its host) or the host's bringup
+(``bringup --host``, on the others) asks it to load each instance's node
 (``_container/load_node``) with the name, namespace, remappings and parameters
 its own process would have had. composition_interfaces comes with rclcpp (it
 is not on PyPI), so it is imported only when a container is used.
@@ -18,6 +19,7 @@ from typing import Any, Dict, List, Optional
 
 from rclpy.node import Node
 from rclpy.parameter import Parameter
+from robmosys_runtime.processes import container_fqn, container_node
 import yaml
 
 
@@ -70,6 +72,22 @@ def load_into(node: Node, container: str, instances: List[Dict[str, Any]], param
     finally:
         node.destroy_client(client)
     return failed
+
+
+def load_on_host(description: Dict[str, Any], host: str, names: List[str], params_file: str,
+                 timeout: float) -> Dict[str, str]:
+    """
+    Load a host's C++ instances into its container; return instance -> why it failed.
+
+    ``bringup --host`` does it for the instances of its host: the manager, on
+    another host, brings them up once they are loaded, as any other instance.
+    """
+    # the smoke test's node of a context of its own, spun while the loads are answered
+    from robmosys_runtime.smoke import spinning_node
+    instances = {i['instance']: i for i in description['instances']}
+    with spinning_node(container_node(description['package'], host) + '_loader') as node:
+        return load_into(node, container_fqn(description, host),
+                         [instances[n] for n in names], params_file, timeout)
 
 
 def _call(client: Any, request: Any, timeout: float) -> Optional[Any]:

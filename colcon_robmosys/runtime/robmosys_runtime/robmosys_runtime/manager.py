@@ -26,7 +26,7 @@ from robmosys_runtime.activation import Outcome, SystemActivation
 from robmosys_runtime.heartbeat import Heartbeat
 from robmosys_runtime.loading import load_into
 from robmosys_runtime.output import say
-from robmosys_runtime.processes import container_node, CPP_GROUP, plan_processes, Processes
+from robmosys_runtime.processes import container_fqn, CPP_GROUP, plan_processes, Processes
 from robmosys_runtime.watch import Watch, watch_diagnostics
 from std_srvs.srv import Trigger
 
@@ -180,10 +180,7 @@ class Manager:
     def _load(self, group: str) -> None:
         """Load the C++ instances into their container, in the background."""
         def load() -> None:
-            # moved with the system by bringup --namespace
-            container = self.description.get('namespace', '') + '/' + container_node(
-                self.description['package'])
-            failed = load_into(self.node, container,
+            failed = load_into(self.node, container_fqn(self.description),
                                [self.instances[n] for n in self.groups[group][0]],
                                self._params_file, self._args.start_timeout)
             for name, why in sorted(failed.items()):

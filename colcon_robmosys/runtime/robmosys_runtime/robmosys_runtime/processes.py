@@ -203,9 +203,19 @@ def container_executable(description: Dict[str, Any]) -> str:
     return CONTAINERS[executor]
 
 
-def container_node(package: str) -> str:
-    """Return the node name of the component container of a system's C++ instances."""
-    return f'{package}_container'
+def container_node(package: str, host: str = '') -> str:
+    """
+    Return the node name of the component container of a system's C++ instances.
+
+    :param host: the host whose instances it runs ('' for the manager's host):
+      each host has a container of its own, and node names are unique across hosts
+    """
+    return f'{package}_{host}_container' if host else f'{package}_container'
+
+
+def container_fqn(description: Dict[str, Any], host: str = '') -> str:
+    """Return the fully qualified name of a host's container (moved with the system)."""
+    return description.get('namespace', '') + '/' + container_node(description['package'], host)
 
 
 def plan_processes(description: Dict[str, Any], description_file: str, params_file: str,
@@ -218,7 +228,7 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
         C++ ones one component container; by default what the model says
         (``processes: shared``)
     :param containers: whether C++ instances may share a container (the
-        manager loads them into it: ``CPP_GROUP``)
+        manager loads them into it, or the bringup of their host: ``CPP_GROUP``)
     :raises NotInstalled: when a package that an instance needs is not installed
     """
     if shared is None:
@@ -260,7 +270,7 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
         groups[CPP_GROUP] = (loaded, [
             os.path.join(get_package_prefix('rclcpp_components'), 'lib', 'rclcpp_components',
                          container_executable(description)),
-            '--ros-args', '-r', f"__node:={container_node(description['package'])}",
+            '--ros-args', '-r', f"__node:={container_node(description['package'], host)}",
             *_container_namespace(description), *ros_arguments])
     return groups
 

@@ -6,7 +6,8 @@ import sys
 
 from conftest import wait_until
 import pytest
-from robmosys_runtime.processes import NotInstalled, plan_processes, Processes
+from robmosys_runtime.processes import (
+    container_fqn, container_node, NotInstalled, plan_processes, Processes)
 
 
 def test_a_process_is_starting_then_running_then_exited():
@@ -49,3 +50,12 @@ def test_instances_whose_package_is_not_installed_are_named_before_anything_star
         "instance watcher needs the package 'no_such_watcher_package', which is not "
         'installed (no prefix of AMENT_PREFIX_PATH has it: build it, or source the install '
         'that has it)']
+
+
+def test_each_host_has_a_container_of_its_own_moved_with_the_system():
+    # node names are unique across hosts: robot1's container is not the manager's
+    assert container_node('fleet') == 'fleet_container'
+    assert container_node('fleet', 'robot1') == 'fleet_robot1_container'
+    assert container_fqn({'package': 'fleet'}) == '/fleet_container'
+    assert container_fqn({'package': 'fleet', 'namespace': '/site'},
+                         'robot1') == '/site/fleet_robot1_container'
