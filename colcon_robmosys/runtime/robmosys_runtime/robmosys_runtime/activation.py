@@ -24,6 +24,10 @@ from robmosys_runtime.levels import Outcome
 from robmosys_runtime.lifecycle_calls import Failed, LifecycleCalls, Stopped
 
 
+#: what tells the state of an instance its process told: (instance, stopped) -> state or None
+Told = Callable[[str, Callable[[], bool]], Optional[str]]
+
+
 class SystemActivation:
     """
     Configure every managed instance and activate each after the ones it names.
@@ -39,18 +43,24 @@ class SystemActivation:
     :param report: called with ``(level, text)``, level ``'info'`` or ``'error'``
     :param timeouts: instance name -> seconds for each of its transitions, where
         the model sets it (``timeout`` otherwise)
+    :param told: called with an instance and what says that its bring-up
+        ended, at the instance's bring-up: the state its process told
+        (:meth:`robmosys_runtime.reports.Reports.take`), taken as its state,
+        or None: the instance is asked
     """
 
     def __init__(self, node: Node, instances: Mapping[str, str],
                  after: Mapping[str, Sequence[str]], *, timeout: float = 60.0,
                  start_timeout: Optional[float] = None,
                  report: Optional[Callable[[str, str], None]] = None,
-                 timeouts: Optional[Mapping[str, float]] = None) -> None:
+                 timeouts: Optional[Mapping[str, float]] = None,
+                 told: Optional[Told] = None) -> None:
         self._node = node
         self._instances = dict(instances)
         self._after = {name: list(after.get(name, ())) for name in instances}
         self._timeouts = dict(timeouts or {})
         self._report = report or self._log
+        self._told = told
         self._states: Dict[str, str] = {}
         self._failed: Dict[str, str] = {}
         self._changed = threading.Condition()
@@ -110,6 +120,10 @@ class SystemActivation:
         """Return the failed instances and why they failed."""
         with self._changed:
             return dict(self._failed)
+
+    def discovering(self, name: str) -> bool:
+        """Tell whether an instance's get_state is still being discovered (see probe)."""
+        return self._calls.discovering(name)
 
     def probe(self, name: str, timeout: float) -> Optional[str]:
         """Return the state an instance tells within timeout, or None (a heartbeat)."""
@@ -202,7 +216,14 @@ class SystemActivation:
 
     def _bring_up(self, name: str) -> None:
         try:
-            state = self._calls.get_state(name) or 'unknown'
+            state = self._told(name, lambda: self._stop.is_set() or self._has_failed(name)) \
+                if self._told is not None else None
+            if state is not None:
+                # its services are discovered in the background, for later calls
+                threading.Thread(target=self._calls.prepare, args=(name,), daemon=True,
+                                 name=f'clients of {name}').start()
+            else:
+                state = self._calls.get_state(name) or 'unknown'
             if state == 'unconfigured':
                 state = self._calls.change(name, Transition.TRANSITION_CONFIGURE)
             if state == 'inactive':

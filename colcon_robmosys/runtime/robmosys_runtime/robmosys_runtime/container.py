@@ -16,10 +16,11 @@ With ``--activate`` (what ``bringup`` and ``<system>.launch.py`` start, where
 the system manager brings the system up) it also configures and activates
 each managed instance whose predecessors (``after``) it activated itself, in
 the model's order, through rclpy's own transitions, before it serves any
-request: the manager then finds them active with one ``get_state`` each, and
-does not take each through two transitions of the lifecycle services (two
-calls per instance, each waiting for the service to be discovered, were what
-the manager added to the floor, issue 28). An instance that fails a
+request, and tells the manager, in one message, which it brought to which
+state (:mod:`robmosys_runtime.reports`): the manager does not take each
+through two transitions of the lifecycle services, nor asks each its state
+(each call waiting for the service of another process to be discovered was
+what the manager added to the floor, issue 28). An instance that fails a
 transition here is left where it is: the manager takes it up, and reports it.
 """
 
@@ -34,6 +35,7 @@ from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
 from rclpy.node import Node
 from robmosys_runtime.main import run_nodes
 from robmosys_runtime.processes import node_arguments
+from robmosys_runtime.reports import Reporter
 
 
 def node_factory(instance: Dict[str, Any], params_file: str) -> Callable[[], Node]:
@@ -49,17 +51,22 @@ def node_factory(instance: Dict[str, Any], params_file: str) -> Callable[[], Nod
     return create
 
 
-def activate_in_order(instances: List[Dict[str, Any]], nodes: List[Node]) -> List[str]:
+def activate_in_order(instances: List[Dict[str, Any]], nodes: List[Node],
+                      untouched: Optional[List[str]] = None) -> List[str]:
     """
     Configure and activate the managed instances whose predecessors are active here.
 
     ``instances`` are in activation order, each with its node. Return the
-    instances made active.
+    instances made active; add to ``untouched`` the managed ones left as they
+    were made (unconfigured): what they come after was not activated here.
     """
     active: List[str] = []
     for instance, node in zip(instances, nodes):
-        if not instance.get('managed') or not instance.get('lifecycle', True) or \
-                not all(a in active for a in instance.get('after', ())):
+        if not instance.get('managed') or not instance.get('lifecycle', True):
+            continue
+        if not all(a in active for a in instance.get('after', ())):
+            if untouched is not None:
+                untouched.append(instance['instance'])
             continue
         # a managed instance with a lifecycle: its node is a LifecycleNode
         lifecycle = cast(LifecycleNode, node)
@@ -67,6 +74,19 @@ def activate_in_order(instances: List[Dict[str, Any]], nodes: List[Node]) -> Lis
                 lifecycle.trigger_activate() == TransitionCallbackReturn.SUCCESS:
             active.append(instance['instance'])
     return active
+
+
+def bring_up(instances: List[Dict[str, Any]], nodes: List[Node], reporter: Reporter) -> None:
+    """
+    Activate what can be (:func:`activate_in_order`); tell the manager the states known.
+
+    Those activated are active, those not touched unconfigured; one that
+    failed a transition is left out: the manager asks it its state.
+    """
+    untouched: List[str] = []
+    active = activate_in_order(instances, nodes, untouched)
+    reporter.brought_up({**dict.fromkeys(untouched, 'unconfigured'),
+                         **dict.fromkeys(active, 'active')})
 
 
 def main(argv: Optional[List[str]] = None) -> int:
@@ -86,11 +106,13 @@ def main(argv: Optional[List[str]] = None) -> int:
               if unknown else 'container: error: no instance named', file=sys.stderr)
         return 2
     chosen = [instances[n] for n in names]
+    reporter = Reporter(description)
     return run_nodes([node_factory(i, params_file) for i in chosen],
                      executor_name=description.get('executors', {}).get('python'),
                      args=['container', *ros_arguments] if ros_arguments else None,
-                     before_spin=(lambda nodes: activate_in_order(chosen, nodes))
-                     if activate else None)
+                     before_spin=(lambda nodes: bring_up(chosen, nodes, reporter))
+                     if activate else None,
+                     unspun=[reporter.make] if activate else ())
 
 
 if __name__ == '__main__':

@@ -95,6 +95,9 @@ class Heartbeat:
                     back.append(name)
                 continue
             if answer is None:
+                if self._activation.discovering(name):
+                    # told active by its process; its service not discovered yet
+                    continue
                 self._missed[name] = self._missed.get(name, 0) + 1
                 if self._missed[name] == MISSED and name not in self._silent:
                     why = f'no answer for {MISSED * self.period:g} s'

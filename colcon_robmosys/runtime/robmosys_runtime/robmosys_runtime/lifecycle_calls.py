@@ -71,6 +71,8 @@ class LifecycleCalls:
         self._failed = failed
         self._lock = threading.Lock()
         self._clients: Dict[Tuple[str, str], Any] = {}
+        #: instance -> when its get_state client was made, until its service is seen
+        self._unseen: Dict[str, float] = {}
 
     def call(self, client: Any, request: Any, wait: float) -> Any:
         """Call a service; return its answer, or None if none came within wait seconds."""
@@ -100,15 +102,44 @@ class LifecycleCalls:
         return any(client.srv_name.startswith(f'{fqn}/')
                    for name, fqn in self._instances.items() if self._failed(name))
 
-    def client(self, name: str, srv_type: Any, service: str,
-               timeout: Optional[float] = None) -> Any:
-        """Return the client of a service of an instance, once the instance offers it."""
+    def _client(self, name: str, srv_type: Any, service: str) -> Any:
+        """Return the client of a service of an instance, made once."""
         with self._lock:
             client: Any = self._clients.get((name, service))
             if client is None:
                 client = self._node.create_client(
                     srv_type, f'{self._instances[name]}/{service}')
                 self._clients[(name, service)] = client
+                if service == 'get_state':
+                    self._unseen[name] = time.monotonic()
+        return client
+
+    def prepare(self, name: str) -> None:
+        """
+        Make the clients of an instance's lifecycle services, without waiting for them.
+
+        For an instance whose state its process told: its services are then
+        discovered in the background, for the heartbeat and the bring-down.
+        """
+        self._client(name, GetState, 'get_state')
+        self._client(name, ChangeState, 'change_state')
+
+    def discovering(self, name: str) -> bool:
+        """
+        Tell whether an instance's get_state is still to be seen, within its start timeout.
+
+        Its process told its state, and the service was not needed so far: a
+        heartbeat that finds it not discovered yet has no answer to miss.
+        """
+        with self._lock:
+            made = self._unseen.get(name)
+            return (name, 'get_state') not in self._clients or (
+                made is not None and time.monotonic() - made < self._start_timeout)
+
+    def client(self, name: str, srv_type: Any, service: str,
+               timeout: Optional[float] = None) -> Any:
+        """Return the client of a service of an instance, once the instance offers it."""
+        client = self._client(name, srv_type, service)
         timeout = self._start_timeout if timeout is None else timeout
         deadline = time.monotonic() + timeout
         # not wait_for_service(): it sleeps in steps of 0.25 s, which every
@@ -118,6 +149,9 @@ class LifecycleCalls:
                 raise Stopped()
             if time.monotonic() > deadline:
                 raise Failed(f'did not appear within {timeout:g} s')
+        if service == 'get_state':
+            with self._lock:
+                self._unseen.pop(name, None)
         return client
 
     def timeout_of(self, name: str) -> float:

@@ -108,7 +108,8 @@ def run(node_factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
 
 def run_nodes(node_factories: Sequence[Callable[[], Node]],
               args: Optional[List[str]] = None, executor_name: Optional[str] = None,
-              before_spin: Optional[Callable[[List[Node]], Any]] = None) -> int:
+              before_spin: Optional[Callable[[List[Node]], Any]] = None,
+              unspun: Sequence[Callable[[], Node]] = ()) -> int:
     """
     Spin several nodes in one process until SIGINT or SIGTERM, then shut down cleanly.
 
@@ -119,6 +120,8 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
         of one cannot starve the others.
     :param before_spin: run once with the nodes when they are made, before any
         callback is.
+    :param unspun: nodes made first, before the others, and never spun (they
+        have no callback: they publish), destroyed with the others.
     Return the exit status (0).
     """
     signal.signal(signal.SIGINT, _interrupted)
@@ -127,6 +130,7 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     # Made before the executor spins: served while the others were made, the
     # first nodes of a 50-node process came up later, not sooner (each node
     # added woke the executor to gather every entity again, under the GIL)
+    quiet = [factory() for factory in unspun]
     nodes = [factory() for factory in node_factories]
     if before_spin is not None:
         before_spin(nodes)
@@ -147,7 +151,7 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
             signal.signal(signum, _exit_at_once)
         stop_executor(executor)
         _settle_callbacks(executor, nodes[0])
-        for node in nodes:
+        for node in nodes + quiet:
             node.destroy_node()
         rclpy.try_shutdown()
     return 0

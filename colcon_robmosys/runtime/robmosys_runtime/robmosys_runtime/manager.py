@@ -26,7 +26,9 @@ from robmosys_runtime.activation import Outcome, SystemActivation
 from robmosys_runtime.heartbeat import Heartbeat
 from robmosys_runtime.loading import load_into
 from robmosys_runtime.output import say
-from robmosys_runtime.processes import container_fqn, CPP_GROUP, plan_processes, Processes
+from robmosys_runtime.processes import (
+    container_fqn, CPP_GROUP, plan_processes, Processes, shared_python)
+from robmosys_runtime.reports import GRACE, Reports
 from robmosys_runtime.watch import Watch, watch_diagnostics
 from std_srvs.srv import Trigger
 
@@ -132,9 +134,13 @@ class Manager:
         after = {n: [a for a in self.instances[n]['after'] if a in managed] for n in managed}
         timeouts = {n: float(self.instances[n]['timeout']) for n in managed
                     if self.instances[n].get('timeout')}
+        # what the shared process of this host brings up by itself, it tells
+        self.reports = Reports(
+            node, description, set(managed) & set(shared_python(description, '', args.processes)),
+            grace=min(GRACE, args.start_timeout), patience=args.start_timeout + args.timeout)
         self.activation = SystemActivation(
             node, managed, after, timeout=args.timeout, start_timeout=args.start_timeout,
-            report=say, timeouts=timeouts)
+            report=say, timeouts=timeouts, told=self.reports.take)
         self.stopping = threading.Event()
         #: whether the system is meant to be up (operators bring it down and up)
         self.up = True

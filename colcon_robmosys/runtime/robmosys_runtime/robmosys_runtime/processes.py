@@ -246,12 +246,12 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
     # what bringup's options give every process (--log-level)
     ros_arguments = list(description.get('ros_arguments', ()))
     groups: Groups = {}
-    together = []
+    together = shared_python(description, host, shared)
     loaded = []
     for instance in instances:
-        if shared and instance.get('python_class') and not instance.get('command'):
-            together.append(instance['instance'])
-        elif shared and containers and instance.get('plugin') and not instance.get('command'):
+        if instance['instance'] in together:
+            continue
+        if shared and containers and instance.get('plugin') and not instance.get('command'):
             loaded.append(instance['instance'])
         else:
             groups[instance['instance']] = (
@@ -273,6 +273,21 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
             '--ros-args', '-r', f"__node:={container_node(description['package'], host)}",
             *_container_namespace(description), *ros_arguments])
     return groups
+
+
+def shared_python(description: Dict[str, Any], host: str = '',
+                  shared: Optional[bool] = None) -> List[str]:
+    """
+    Return the Python instances of a host that share one process (none if not shared).
+
+    On the manager's host ('') that process brings them up by itself and
+    tells the manager what it brought up (``container --activate``), from
+    ``bringup`` as from ``<system>.launch.py``.
+    """
+    if shared is None:
+        shared = description.get('processes') == 'shared'
+    return [i['instance'] for i in description['instances'] if shared and
+            i.get('host', '') == host and i.get('python_class') and not i.get('command')]
 
 
 def _container_namespace(description: Dict[str, Any]) -> List[str]:

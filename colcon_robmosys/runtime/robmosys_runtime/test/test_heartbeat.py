@@ -18,6 +18,8 @@ class Instances:
         self.restarted = []
         self.failed = {}
         self.asked = []
+        #: told active by their process, their get_state not discovered yet
+        self.discovered_later = set()
 
     def running(self) -> bool:
         return False
@@ -31,6 +33,9 @@ class Instances:
             time.sleep(timeout)
         time.sleep(self.delay)
         return self.answers[name]
+
+    def discovering(self, name) -> bool:
+        return name in self.discovered_later
 
     def restart(self, *names) -> None:
         self.restarted.append(names)
@@ -65,6 +70,21 @@ def test_silent_instances_are_reported_after_three_heartbeats_however_many(monke
     # as long (0.2 s each would be 3.6 s for three heartbeats)
     assert took < 3.0, took
     assert ('error', 'instance node0 does not answer (heartbeat): no answer for 0.6 s') in said
+
+
+def test_an_instance_whose_service_is_still_discovered_is_not_silent_until_it_is():
+    instances = Instances({'told': None, 'asked': None})
+    instances.discovered_later = {'told'}
+    silent = {}
+    beat = _beat(instances, silent)
+    for _ in range(3):
+        beat.heard({'told': None, 'asked': None})
+    # its process said it is active; its get_state is still to be discovered
+    assert list(silent) == ['asked']
+    instances.discovered_later.clear()
+    for _ in range(3):
+        beat.heard({'told': None, 'asked': None})
+    assert sorted(silent) == ['asked', 'told']
 
 
 def test_what_answers_again_is_told_and_what_came_back_is_brought_up_together(monkeypatch):
