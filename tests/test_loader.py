@@ -292,3 +292,20 @@ def test_missing_file(tmp_path: Path):
     assert str(info.value) == (
         f'{path}: error: cannot read the model file: No such file or '
         'directory')
+
+
+def test_a_kept_load_is_handed_out_once_and_only_for_the_same_content(tmp_path: Path):
+    # discovery's outline keeps what it read for the check of the same
+    # process: one parse of each model file, and no reader sees what
+    # another changed (the schema fills in defaults)
+    path = tmp_path / 'robmosys.yaml'
+    path.write_text('robmosys: 1\nservice_definitions: []\n')
+    outlined = load_file(path, keep=True)
+    checked = load_file(path)
+    assert checked is outlined
+    checked.data['changed'] = True
+    again = load_file(path)
+    assert again is not checked and again.data == {'robmosys': 1, 'service_definitions': []}
+    load_file(path, keep=True)
+    path.write_text('robmosys: 1\n')
+    assert load_file(path).data == {'robmosys': 1}

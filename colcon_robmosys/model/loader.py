@@ -268,12 +268,24 @@ def load_text_completely(text: str, path: Path) -> LoadedFile:
     return LoadedFile(path, data, builder.value_marks, builder.key_marks)
 
 
-def load_file(path: Path) -> LoadedFile:
+#: Files loaded for a reader that only read them (discovery's outline), kept
+#: for the next load of the same path and bytes (the check of the same
+#: process): (path, content) -> what was loaded. Each is handed out once,
+#: so that what a reader may change (the schema fills in defaults) is seen
+#: by no other; the oldest go first past _KEPT_MAX.
+_kept: dict[tuple[str, bytes], LoadedFile] = {}
+_KEPT_MAX = 4096
+
+
+def load_file(path: Path, *, keep: bool = False) -> LoadedFile:
     """Read and parse a model file.
 
+    :param keep: the caller only reads what it gets: keep it for the next
+      load of the same content (a model file of 1000 components was parsed
+      twice in a first generation, by discovery and by the check)
     :raises RobmosysError: if the file cannot be read or parsed
     """
-    return load_bytes(read_model_bytes(path), path)
+    return load_bytes(read_model_bytes(path), path, keep=keep)
 
 
 def read_model_bytes(path: Path) -> bytes:
@@ -293,11 +305,26 @@ def read_model_bytes(path: Path) -> bytes:
             path, f'cannot read the model file: {exc.strerror}') from None
 
 
-def load_bytes(raw: bytes, path: Path) -> LoadedFile:
+def load_bytes(raw: bytes, path: Path, *, keep: bool = False) -> LoadedFile:
     """Decode and parse the content of a model file.
 
+    :param keep: see :func:`load_file`
     :raises RobmosysError: if it is not UTF-8 or cannot be parsed
     """
+    key = (str(path), raw)
+    kept = _kept.pop(key, None)
+    if kept is not None and not keep:
+        return kept
+    loaded = _load_bytes(raw, path) if kept is None else kept
+    if keep:
+        while len(_kept) >= _KEPT_MAX:
+            _kept.pop(next(iter(_kept)), None)
+        _kept[key] = loaded
+    return loaded
+
+
+def _load_bytes(raw: bytes, path: Path) -> LoadedFile:
+    """Decode and parse the content of a model file (see :func:`load_bytes`)."""
     try:
         text = raw.decode('utf-8')
     except UnicodeDecodeError as exc:

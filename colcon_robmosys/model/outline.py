@@ -67,7 +67,7 @@ def outline_file(path: Path) -> list[PackageOutline]:
     :raises NoOutline: where only the check stage can tell
     """
     try:
-        data = load_file(Path(path)).data
+        data = load_file(Path(path), keep=True).data
         if not isinstance(data, dict) or data.get('robmosys') != 1:
             raise NoOutline()
         packages = [
