@@ -204,7 +204,8 @@ def commands(kind: str, install: Path, burst: int, warmup: float) -> dict[str, l
     elif kind == 'hand-written C++':
         pubsub = str(install / 'bench_handwritten_cpp' / 'lib' / 'bench_handwritten_cpp' /
                      'pubsub')
-        talker, listener = [pubsub, 'talker'], [pubsub, 'listener']
+        talker, listener = [pubsub, 'talker', 'multi-threaded'], [pubsub, 'listener',
+                                                                  'multi-threaded']
     else:
         talker = [sys.executable, str(HANDWRITTEN), 'talker', HANDWRITTEN_EXECUTOR]
         listener = [sys.executable, str(HANDWRITTEN), 'listener', HANDWRITTEN_EXECUTOR]
