@@ -59,10 +59,11 @@ class PythonBackend(Backend):
     entities = ENTITIES
     starter = 'component_python/starter.jinja'
     return_types = RETURN_TYPES
-    # rclpy's EventsExecutor (7.1.6, 9.1.2) crashed a lifecycle node configured again
-    # after its cleanup (the entities destroyed and made anew), and one thread is not
-    # yet proven through every test of the generated systems: Python components keep
-    # the executor they have always had unless the model names one
+    # rclpy's EventsExecutor (7.1.6, 9.1.2) kills a lifecycle node configured again
+    # after its cleanup: an event queued for a destroyed action port drops the last
+    # reference to rclpy's ScopedWith without the GIL (docs/model-format.md, Executors;
+    # tools/events_executor_cycle.py), which no runtime code can prevent. Python
+    # components keep the executor they have always had unless the model names one
     default_executor = Executor.MULTI_THREADED
 
     def spell(self, component: Component, plan: ComponentPlan,

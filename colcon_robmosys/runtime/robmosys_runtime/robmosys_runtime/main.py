@@ -168,20 +168,27 @@ def spin(executor: Any) -> None:
 
     rclpy's EventsExecutor (7.1.6, 9.1.2 of the ros-* wheels) runs nothing in
     an untimed ``spin()``: it turns on one CPU without calling back. It is
-    spun for a long while at a time, until the context ends.
+    spun for a long while at a time, until the context ends. It serves a
+    request that came before a transition destroyed its service after it, and
+    ``send_response`` raises InvalidHandle out of its spin: the request goes
+    unanswered (its service is gone) and the executor spins on.
     """
-    if not isinstance(executor, Executor):  # the EventsExecutor is no Executor
-        never: Future[None] = Future()
-        while executor.context.ok():
-            executor.spin_until_future_complete(never, timeout_sec=EVENTS_SPIN_PERIOD)
-        return
     while True:
         try:
-            executor.spin()
+            if isinstance(executor, Executor):
+                executor.spin()
+            else:  # the EventsExecutor is no Executor
+                _spin_events(executor)
             return
         except InvalidHandle:
             if not executor.context.ok():
                 raise
+
+
+def _spin_events(executor: Any) -> None:
+    never: Future[None] = Future()
+    while executor.context.ok():
+        executor.spin_until_future_complete(never, timeout_sec=EVENTS_SPIN_PERIOD)
 
 
 def stop_executor(executor: Any) -> None:

@@ -93,6 +93,72 @@ def test_rclpy_alone_ends_spinning_there():
     assert ended and ticks < 5
 
 
+def _served_on_events(spinner):
+    """
+    Serve a request on rclpy's EventsExecutor by a service that its own callback destroys.
+
+    That is a request answered after a cleanup destroyed its port, made certain:
+    rclpy's EventsExecutor holds the service, and its send_response raises
+    InvalidHandle out of spin. Return the ticks of a 20 ms timer after it and the end.
+    """
+    from rclpy.experimental import EventsExecutor
+    from std_srvs.srv import Empty
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    node = rclpy.create_node('served', context=context)
+    ticks = []
+    answered = threading.Event()
+
+    def answer(request, response):
+        node.destroy_service(service)
+        answered.set()
+        return response
+    service = node.create_service(Empty, 'ask_once', answer)
+    executor = EventsExecutor(context=context)
+    executor.add_node(node)
+    ended = []
+
+    def run():
+        try:
+            spinner(executor)
+        except InvalidHandle as error:
+            ended.append(error)
+
+    thread = threading.Thread(target=run, daemon=True)
+    thread.start()
+    asking = rclpy.Context()
+    rclpy.init(context=asking)
+    asker = rclpy.create_node('asker', context=asking)
+    try:
+        client = asker.create_client(Empty, '/ask_once')
+        assert client.wait_for_service(timeout_sec=20)
+        client.call_async(Empty.Request())
+        assert answered.wait(20)
+        node.create_timer(0.02, lambda: ticks.append(1))
+        wait_until(lambda: len(ticks) >= 5 or ended, timeout=10)
+        return len(ticks), ended
+    finally:
+        asker.destroy_node()
+        rclpy.try_shutdown(context=asking)
+        rclpy.try_shutdown(context=context)
+        executor.shutdown()
+        thread.join(10)
+        node.destroy_node()
+
+
+def test_spin_on_events_goes_on_through_a_request_to_a_destroyed_service():
+    ticks, ended = _served_on_events(spin)
+    assert ticks >= 5 and not ended
+
+
+def test_rclpy_events_executor_alone_ends_spinning_there():
+    from robmosys_runtime.main import EVENTS_SPIN_PERIOD
+    ticks, ended = _served_on_events(
+        lambda executor: executor.spin_until_future_complete(
+            rclpy.task.Future(), timeout_sec=EVENTS_SPIN_PERIOD))
+    assert ended and ticks < 5
+
+
 def test_sigint_interrupts_python_only_until_rclpy_handles_it(monkeypatch):
     import signal
 
