@@ -138,20 +138,6 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     manager = Manager(node, description, params_file, args, processes)
     signalled = threading.Event()
 
-    def start(group: str) -> None:
-        processes.start(group, groups[group][1])
-        if group == CPP_GROUP:
-            # no manager on this host: its bringup loads the nodes into the container
-            threading.Thread(target=load, args=(groups[group][0],), daemon=True,
-                             name='load C++ instances').start()
-
-    def load(names: List[str]) -> None:
-        # rclpy, once the instances have started
-        from robmosys_runtime.loading import load_on_host
-        failed = load_on_host(description, args.host, names, params_file, args.start_timeout)
-        for name, why in sorted(failed.items()):
-            say('error', f'instance {name} {why}')
-
     def on_signal(signum: int, frame: Any) -> None:
         if signalled.is_set():
             # a second signal: no more waiting

@@ -60,16 +60,7 @@ def _spun(spinner):
     node.add_waitable(waitable)
     executor = MultiThreadedExecutor(num_threads=2, context=context)
     executor.add_node(node)
-    ended = []
-
-    def run():
-        try:
-            spinner(executor)
-        except InvalidHandle as error:
-            ended.append(error)
-
-    thread = threading.Thread(target=run, daemon=True)
-    thread.start()
+    thread, ended = _spin_in_thread(spinner, executor)
     try:
         assert waitable.raised.wait(10)
         # the timer goes on ticking, or the spinning ended with the race
@@ -116,16 +107,7 @@ def _served_on_events(spinner):
     service = node.create_service(Empty, 'ask_once', answer)
     executor = EventsExecutor(context=context)
     executor.add_node(node)
-    ended = []
-
-    def run():
-        try:
-            spinner(executor)
-        except InvalidHandle as error:
-            ended.append(error)
-
-    thread = threading.Thread(target=run, daemon=True)
-    thread.start()
+    thread, ended = _spin_in_thread(spinner, executor)
     asking = rclpy.Context()
     rclpy.init(context=asking)
     asker = rclpy.create_node('asker', context=asking)
@@ -246,3 +228,18 @@ def test_an_events_executor_runs_timers_and_ends_with_its_context():
         spinning.join(10)
     assert not spinning.is_alive() and ended
     node.destroy_node()
+
+
+def _spin_in_thread(spinner, executor):
+    """Spin executor with spinner in a thread; return it and the InvalidHandle that ended it."""
+    ended = []
+
+    def run():
+        try:
+            spinner(executor)
+        except InvalidHandle as error:
+            ended.append(error)
+
+    thread = threading.Thread(target=run, daemon=True)
+    thread.start()
+    return thread, ended
