@@ -390,6 +390,50 @@ def test_a_node_that_does_not_answer_costs_the_others_nothing(
     assert '# node /lab/graph_probe: parameters: the node did not answer' not in text
 
 
+#: a node that joins the graph a while after its process starts, as on a busy machine
+LATE = textwrap.dedent("""
+    import sys
+    import time
+    import rclpy
+
+    time.sleep(float(sys.argv[1]))
+    rclpy.init(args=sys.argv)
+    node = rclpy.create_node('unnamed')
+    print(f'{node.get_fully_qualified_name()} up', flush=True)
+    try:
+        rclpy.spin(node)
+    except KeyboardInterrupt:
+        pass
+""")
+
+
+def test_a_node_this_host_runs_is_waited_for_until_it_is_in_the_graph(
+        test_workspace_built, tmp_path, domain_id):
+    """A steady graph without a node a process of this host names is not the whole graph."""
+    env = test_workspace_built.env(domain_id)
+    script = tmp_path / 'lib' / 'late_pkg' / 'late_node'
+    script.parent.mkdir(parents=True)
+    script.write_text(LATE, encoding='utf-8')
+    out = tmp_path / 'ws' / 'src'
+    out.mkdir(parents=True)
+
+    def node(name: str, delay: float):
+        return background([sys.executable, str(script), str(delay), '--ros-args',
+                           '-r', f'__node:={name}', '-r', '__ns:=/lab'], env=env)
+    with node('early', 0) as early, node('late', 10) as late:
+        assert wait_until(lambda: '/lab/early up' in early.output(), timeout=30), \
+            early.output()
+        # the graph is steady, with early alone, for longer than the import's settling
+        text = _import(env, out, '--system-package', 'lab_import', '--namespace', 'lab',
+                       '--license', 'BSD-3-Clause',
+                       '--maintainer', 'Lab Team <lab@example.com>')
+        assert '/lab/late up' in late.output()
+    model = yaml.safe_load(text)
+    assert model['systems'][0]['instances'] == {
+        'early': {'component': 'late_pkg/late_node', 'namespace': '/lab'},
+        'late': {'component': 'late_pkg/late_node', 'namespace': '/lab'}}, text
+
+
 def test_an_existing_model_is_never_replaced_and_no_graph_is_an_error(test_workspace_built,
                                                                       tmp_path):
     env = test_workspace_built.env(free_domain_id())

@@ -18,7 +18,7 @@ import yaml
 
 from colcon_robmosys.check import load_model_file
 from colcon_robmosys.importer.graph import import_graph
-from colcon_robmosys.importer.graph_read import Endpoint, GraphNode, GraphParameter
+from colcon_robmosys.importer.graph_read import _visible, Endpoint, GraphNode, GraphParameter
 from colcon_robmosys.importer.graph_yaml import Commented, dump
 from colcon_robmosys.importer.processes import (
     node_processes, NodeProcess, parse_command_line, process_of)
@@ -134,6 +134,17 @@ def test_command_lines_tell_package_executable_language_and_remappings(tmp_path:
     assert both is not None and both.executable == 'talker' and both.remappings == {}
     assert process_of([talker, NodeProcess('other', 'talker', 'python', 't', '/robot')],
                       't', '/robot') is None
+    # the node a command line names is waited for in the graph; one it does not name is not
+    assert (talker.named_node, listener.named_node) == ('/robot/t', '')
+    assert NodeProcess('p', 'e', 'python', 'n', 'a/b/').named_node == '/a/b/n'
+    assert NodeProcess('p', 'e', 'python', 'n').named_node == '/n'
+
+
+def test_only_nodes_a_snapshot_can_show_are_waited_for():
+    running = {'/robot/t', '/robot/arm/j', '/robotics/x', '/robot/_hidden', '/n'}
+    assert _visible(running, '/robot') == {'/robot/t', '/robot/arm/j'}
+    assert _visible(running, None) == running - {'/robot/_hidden'}
+    assert _visible(running, '/') == running - {'/robot/_hidden'}
 
 
 def test_processes_of_another_ros_domain_are_not_candidates(tmp_path: Path):

@@ -16,7 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 import os
 import time
-from typing import Any
+from typing import Any, Callable
 
 #: entities every node has: not ports
 _OWN_SERVICES = frozenset((
@@ -88,14 +88,18 @@ class GraphNode:
         return None
 
 
-def read_graph(namespace: str | None, timeout: float, *,
-               settle: float = 3.5) -> list[GraphNode]:
+def read_graph(namespace: str | None, timeout: float, *, settle: float = 3.5,
+               expected: Callable[[], set[str]] = set) -> list[GraphNode]:
     """Return the nodes of the graph of the current domain (under a namespace).
 
     Discovery takes time: the graph is read again until it has not changed for
     ``settle`` seconds (longer than Fast DDS's period of participant
     announcements, 3 s: a participant that missed the first ones is heard
-    then), or ``timeout`` seconds have passed.
+    then), or ``timeout`` seconds have passed. A graph that is steady but
+    lacks a node that is known to run (``expected``: fully qualified names,
+    asked again every second, since processes start and end) is read on until
+    the timeout: on a busy machine a participant can be heard long after the
+    others.
 
     :raises ImportError: if rclpy is not installed
     """
@@ -110,19 +114,33 @@ def read_graph(namespace: str | None, timeout: float, *,
         executor.add_node(node)
         end = time.monotonic() + timeout
         nodes, stable_since = _snapshot(node, namespace), time.monotonic()
+        running, asked = _visible(expected(), namespace), time.monotonic()
         # an empty graph is waited on until the timeout: the system may be starting
         while time.monotonic() < end and (
-                not nodes or time.monotonic() - stable_since < settle):
+                not nodes or time.monotonic() - stable_since < settle or
+                not running <= {n.fqn for n in nodes}):
             executor.spin_once(timeout_sec=0.1)
             again = _snapshot(node, namespace)
             if again != nodes:
                 nodes, stable_since = again, time.monotonic()
+            if time.monotonic() - asked >= 1.0:
+                running, asked = _visible(expected(), namespace), time.monotonic()
         for graph_node in nodes:
             _read_qos(node, graph_node)
         _read_parameters(node, executor, nodes, max(end - time.monotonic(), 2.0))
         return nodes
     finally:
         rclpy.shutdown(context=context)
+
+
+def _visible(fqns: set[str], namespace: str | None) -> set[str]:
+    """Return those of these node names that a snapshot under namespace can show."""
+    shown = set()
+    for fqn in fqns:
+        node_namespace, _, name = fqn.rpartition('/')
+        if not name.startswith('_') and _under(node_namespace or '/', namespace):
+            shown.add(fqn)
+    return shown
 
 
 def _under(namespace: str, prefix: str | None) -> bool:

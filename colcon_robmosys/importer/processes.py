@@ -34,6 +34,14 @@ class NodeProcess:
     #: from -> to
     remappings: dict[str, str] = field(default_factory=dict)
 
+    @property
+    def named_node(self) -> str:
+        """Return the fully qualified name its command line gives its node, '' if none."""
+        if not self.node:
+            return ''
+        namespace = self.namespace.strip('/')
+        return f'/{namespace}/{self.node}' if namespace else f'/{self.node}'
+
 
 def node_processes(domain: str, proc: Path = Path('/proc')) -> list[NodeProcess]:
     """Return the processes of this host that run an executable of a ROS package.

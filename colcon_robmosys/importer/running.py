@@ -27,8 +27,11 @@ def import_running_system(system: str, index: InterfaceIndex, *, namespace: str 
     :raises RobmosysError: if rclpy is missing, no node is found, or the
       system's license and maintainers are neither given nor found
     """
+    def running() -> set[str]:
+        # a node this host runs under a name its command line gives is waited for
+        return {p.named_node for p in node_processes(domain)} - {''}
     try:
-        nodes = read_graph(namespace, timeout)
+        nodes = read_graph(namespace, timeout, expected=running)
     except ImportError:
         raise RobmosysError([Diagnostic(Location('rclpy'), 'rclpy, which reads the ROS '
                                         'graph, is not installed: source a ROS 2 '

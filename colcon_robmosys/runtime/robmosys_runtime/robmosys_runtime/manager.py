@@ -150,14 +150,6 @@ class Manager:
         #: started already, if given: see :func:`start_processes`
         self.processes = processes or Processes(self._exited)
         self.processes.on_exit = self._exited
-        group = MutuallyExclusiveCallbackGroup()
-        for service, answer in (('bring_up', self._bring_up), ('bring_down', self._bring_down),
-                                ('report', self._report), ('conformance', self._conformance)):
-            node.create_service(Trigger, f'~/{service}', guarded(service, answer),
-                                callback_group=group)
-        self._diagnostics = node.create_publisher(DiagnosticArray, '/diagnostics', 10)
-        node.create_timer(args.diagnostics_period,
-                          guarded('publishing /diagnostics', self.publish_diagnostics))
         if args.heartbeat > 0:
             heartbeat = Heartbeat(self.activation, args.heartbeat, self._silent, self.instances,
                                   set(self._group_of), lambda: self.up)
@@ -167,6 +159,16 @@ class Manager:
         if getattr(args, 'check_period', 0.0) > 0:
             self.watch = Watch(node, description, period=args.check_period,
                                silence=args.silence)
+        # the node spins already: its services and timer come last, once every
+        # attribute they read is set (a report asked for at once is answered)
+        self._diagnostics = node.create_publisher(DiagnosticArray, '/diagnostics', 10)
+        group = MutuallyExclusiveCallbackGroup()
+        for service, answer in (('bring_up', self._bring_up), ('bring_down', self._bring_down),
+                                ('report', self._report), ('conformance', self._conformance)):
+            node.create_service(Trigger, f'~/{service}', guarded(service, answer),
+                                callback_group=group)
+        node.create_timer(args.diagnostics_period,
+                          guarded('publishing /diagnostics', self.publish_diagnostics))
 
     def start(self) -> None:
         """Start the processes of this host and bring every managed instance up."""

@@ -108,3 +108,36 @@ def test_ros_arguments_are_left_out_as_rclpy_leaves_them_out():
                  ['--', '--attach']):
         # rclpy takes the first argument for the program's name
         assert without_ros_args(argv) == remove_ros_args(['bringup', *argv])[1:], argv
+
+
+def test_each_service_answers_from_the_moment_it_exists(monkeypatch):
+    """The manager's node spins while the manager is made: no service sees it half made."""
+    import argparse
+    said = []
+    monkeypatch.setattr(manager, 'say', lambda level, text: said.append((level, text)))
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    node = rclpy.create_node('system_bringup', context=context)
+    answers = {}
+    create_service = node.create_service
+
+    def create_and_call(kind, name, callback, **kwargs):
+        # a request that arrives as soon as the service is there
+        service = create_service(kind, name, callback, **kwargs)
+        answers[name] = callback(Trigger.Request(), Trigger.Response())
+        return service
+    monkeypatch.setattr(node, 'create_service', create_and_call)
+    args = argparse.Namespace(
+        attach=True, processes=None, description='', timeout=5.0, start_timeout=5.0,
+        heartbeat=0.0, diagnostics_period=1.0, check_period=1.0, silence=5.0)
+    description = {'package': 'system', 'namespace': '', 'instances': [], 'connections': []}
+    try:
+        made = manager.Manager(node, description, '', args)
+        assert sorted(answers) == ['~/bring_down', '~/bring_up', '~/conformance', '~/report']
+        assert [s for s in said if s[0] == 'error'] == [], said
+        assert answers['~/report'].success, answers['~/report'].message
+        assert not answers['~/conformance'].success
+        assert made.watch is not None
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
