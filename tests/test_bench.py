@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from pathlib import Path
 import re
+import subprocess
 import sys
 
 from catkin_pkg.package import parse_package
@@ -255,3 +256,23 @@ def test_cppbuild_benchmark_prints_ratios_or_why_not(capsys):
                      out), out
     assert len(re.findall(rf'^\| (clean colcon build|CPU of that build|lines of C\+\+).* '
                           rf'{RATIO} +\|', out, re.MULTILINE)) == 3, out
+
+
+def test_the_cpu_of_a_process_group_is_read_to_the_nanosecond():
+    """What P3 divides by: a process's own CPU time, finer than a clock tick of 10 ms."""
+    busy = ('import sys, time\n'
+            'end = time.process_time() + 0.25\n'
+            'while time.process_time() < end:\n'
+            '    pass\n'
+            'print(time.process_time(), flush=True)\n'
+            'sys.stdin.read()\n')
+    child = subprocess.Popen([sys.executable, '-c', busy], stdin=subprocess.PIPE,
+                             stdout=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        own = float(child.stdout.readline())
+        read = bench_runtime.group_cpu_seconds(child.pid)
+    finally:
+        child.communicate('', timeout=30)
+    # its own count, read after the line it printed: at most a few ms more
+    assert own <= read < own + 0.05, (own, read)
+    assert round(read * 1e9) % 10_000_000 != 0, read

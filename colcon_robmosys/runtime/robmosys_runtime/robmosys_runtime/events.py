@@ -15,7 +15,7 @@ from __future__ import annotations
 import threading
 import time
 import traceback
-from typing import Any, Callable, Dict, List, Optional
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 from action_msgs.msg import GoalStatus
 from rclpy.action import CancelResponse, GoalResponse
@@ -179,8 +179,17 @@ class EventClient:
     The client of an event port, over a ROS 2 action.
 
     An activation is a goal; each event is its feedback; deactivating
-    cancels the goal.
+    cancels the goal. An activation made before the server is there (a
+    client activated before discovery found the server) is sent once it is:
+    a goal sent to no server is lost, and so would be every event of it.
     """
+
+    #: seconds between two looks for the server, while activations wait for it
+    WAIT_PERIOD = 0.1
+    #: seconds the server has been seen before the activations that waited go: the
+    #: client sees the server before the server has matched the client (DDS matches
+    #: each direction on its own), and a goal sent in between was lost
+    SERVER_SETTLE = 0.5
 
     def __init__(self, node: Node, action_type: Any, name: str,
                  qos: Optional[QoSProfile] = None,
@@ -197,6 +206,10 @@ class EventClient:
         self._on_event = on_event
         self._lock = threading.Lock()
         self._activations: List[EventActivation] = []
+        #: activations made before the server was there, and the timer that sends them
+        self._waiting: List[Tuple[EventActivation, Any]] = []
+        self._waiting_timer: Any = None
+        self._server_since: Optional[float] = None
         self.callback_group = MutuallyExclusiveCallbackGroup()
         self.client: Any = ActionClient(
             node, action_type, name, callback_group=self.callback_group,
@@ -220,10 +233,40 @@ class EventClient:
         handle = EventActivation(single)
         with self._lock:
             self._activations.append(handle)
+            if self._waiting or not self.client.server_is_ready():
+                self._waiting.append((handle, activation))
+                if self._waiting_timer is None:
+                    self._waiting_timer = self._node.create_timer(
+                        self.WAIT_PERIOD, self._send_waiting,
+                        callback_group=self.callback_group)
+                return handle
+        self._send(handle, activation)
+        return handle
+
+    def _send(self, handle: EventActivation, activation: Any) -> None:
         future = self.client.send_goal_async(
             activation, feedback_callback=lambda message: self._event(handle, message.feedback))
         future.add_done_callback(lambda future: self._accepted(handle, future))
-        return handle
+
+    def _send_waiting(self) -> None:
+        """Send the activations that waited for the server, in their order, once it is there."""
+        with self._lock:
+            if self._waiting_timer is None:
+                return
+            if not self.client.server_is_ready():
+                self._server_since = None
+                return
+            now = time.monotonic()
+            if self._server_since is None:
+                self._server_since = now
+            if now - self._server_since < self.SERVER_SETTLE:
+                return
+            waiting, self._waiting = self._waiting, []
+            self._node.destroy_timer(self._waiting_timer)
+            self._waiting_timer = None
+        for handle, activation in waiting:
+            if not handle.ended:  # deactivated while it waited: nothing to send
+                self._send(handle, activation)
 
     def deactivate(self, handle: EventActivation) -> None:
         """End an activation: none of its events runs the activity any more."""
@@ -285,6 +328,9 @@ class EventClient:
         """Deactivate every activation, then release the client."""
         with self._lock:
             activations = list(self._activations)
+            timer, self._waiting_timer, self._waiting = self._waiting_timer, None, []
+        if timer is not None:
+            self._node.destroy_timer(timer)
         for handle in activations:
             self.deactivate(handle)
         self.client.destroy()

@@ -93,3 +93,50 @@ def test_destroying_the_server_ends_the_activations(spinning):
     assert wait_until(lambda: server.activations == 1)
     server.destroy()
     assert wait_until(lambda: handle.ended)
+
+
+def test_an_activation_made_before_the_server_is_there_is_sent_once_it_is(spinning):
+    # a goal sent to no server is lost: so would be every event of its activation. The
+    # name is this test's own: the graph may still show the servers of the tests before
+    client_node = spinning.add(Node('watcher', context=spinning.context))
+    events = []
+    client = EventClient(client_node, Fibonacci, 'late_event', on_event=events.append)
+    early = client.activate(Fibonacci.Goal(order=10))
+    dropped = client.activate(Fibonacci.Goal(order=1))
+    client.deactivate(dropped)  # deactivated while it waited: never sent
+    time.sleep(0.5)
+    assert early.goal_handle is None and not early.ended
+    server_node = spinning.add(Node('sensor', context=spinning.context))
+    server = EventServer(server_node, Fibonacci, 'late_event',
+                         condition=lambda activation, event: event.sequence[0] >= activation.order)
+    # the activation reaches the server (its answer may not come back: rmw_fastrtps
+    # drops the response to a client whose reader the server has not matched yet)
+    assert wait_until(lambda: server.activations == 1)
+    time.sleep(0.5)
+    assert server.activations == 1  # the one that waited, not the dropped one
+
+    def fired() -> bool:
+        # the events of a sensor keep coming: one that went out before the server's
+        # publisher had matched the client's subscription is not the last
+        server.fire(_event(12))
+        return early.events >= 1
+    assert wait_until(fired)
+    assert {tuple(e.sequence) for e in events} == {(12,)}
+    assert dropped.goal_handle is None and dropped.events == 0
+    # once the server is there, an activation goes at once: no timer is left
+    assert client._waiting_timer is None
+    client.destroy()
+    server.destroy()
+
+
+def test_destroying_the_client_while_activations_wait_sends_nothing(spinning):
+    client_node = spinning.add(Node('watcher', context=spinning.context))
+    client = EventClient(client_node, Fibonacci, 'gone_event')
+    waiting = client.activate(Fibonacci.Goal(order=1))
+    client.destroy()
+    assert waiting.ended
+    server_node = spinning.add(Node('sensor', context=spinning.context))
+    server = EventServer(server_node, Fibonacci, 'gone_event')
+    time.sleep(1.0)
+    assert server.activations == 0
+    server.destroy()

@@ -2,6 +2,7 @@
 # Licensed under the Apache License, Version 2.0
 """The system manager serves on through a callback that raises, on real rclpy."""
 
+import argparse
 import threading
 
 import rclpy
@@ -112,7 +113,6 @@ def test_ros_arguments_are_left_out_as_rclpy_leaves_them_out():
 
 def test_each_service_answers_from_the_moment_it_exists(monkeypatch):
     """The manager's node spins while the manager is made: no service sees it half made."""
-    import argparse
     said = []
     monkeypatch.setattr(manager, 'say', lambda level, text: said.append((level, text)))
     context = rclpy.Context()
