@@ -235,6 +235,41 @@ void events_reach_the_activations_whose_condition_holds()
   runtime.stop();
 }
 
+void an_activation_made_before_the_server_is_there_is_sent_once_it_is()
+{
+  // a goal sent to no server is lost: so would be every event of its activation
+  Runtime runtime;
+  auto sensor = std::make_shared<rclcpp::Node>("late_sensor");
+  auto watcher = std::make_shared<rclcpp::Node>("late_watcher");
+  std::atomic<int> events{0};
+  robmosys_runtime::EventClient<Fibonacci> client(
+    watcher.get(), "late_event", rclcpp::QoS(10),
+    [&events](const Fibonacci::Feedback &) {++events;});
+  runtime.spin(sensor);
+  runtime.spin(watcher);
+  runtime.start();
+  Fibonacci::Goal activation;
+  activation.order = 10;
+  auto early = client.activate(activation);
+  auto dropped = client.activate(activation);
+  client.deactivate(dropped);  // deactivated while it waited: never sent
+  std::this_thread::sleep_for(500ms);
+  EXPECT(!early->goal_handle && !early->ended);
+  robmosys_runtime::EventServer<Fibonacci> server(
+    sensor.get(), "late_event", rclcpp::QoS(10), nullptr,
+    [](const Fibonacci::Goal & kept, const Fibonacci::Feedback & event) {
+      return event.sequence.at(0) >= kept.order;
+    });
+  Fibonacci::Feedback high;
+  high.sequence = {12};
+  // the events of a sensor keep coming: one sent before the server's publisher
+  // matched the client's subscription is not the last
+  EXPECT(wait_until([&]() {return server.fire(high) >= 1u && events >= 1;}));
+  EXPECT(server.fire(high) == 1u);  // the one that waited, not the dropped one
+  EXPECT(dropped->events == 0u && !dropped->goal_handle);
+  runtime.stop();
+}
+
 void component_ports_live_from_configure_to_cleanup()
 {
   Runtime runtime;
@@ -330,6 +365,7 @@ int main()
 {
   for (const auto & test : std::vector<std::function<void()>>{
     query_client, events_reach_the_activations_whose_condition_holds,
+    an_activation_made_before_the_server_is_there_is_sent_once_it_is,
     component_ports_live_from_configure_to_cleanup, queries_are_answered_while_active_only,
     a_throwing_hook_fails_its_transition, mapped_entries_are_checked_as_the_model_checks_them})
   {

@@ -45,7 +45,10 @@ struct EventActivation
 /// A required event port: an action client whose goals are activations.
 /**
  * Each event of an activation runs the activity the port triggers; deactivating
- * cancels the goal.
+ * cancels the goal. An activation made before the server is there (a client
+ * activated before discovery found the server) waits, and is sent once the
+ * server has been seen for half a second: a goal sent to no server is lost, and
+ * so would be every event of it.
  */
 template<typename ActionT>
 class EventClient
@@ -73,15 +76,25 @@ public:
     rcl_action_client_options_t options = rcl_action_client_get_default_options();
     options.feedback_topic_qos = qos.get_rmw_qos_profile();
     state_->client = rclcpp_action::create_client<ActionT>(node, name, group, options);
+    // the timer that sends waiting activations is the node's, dropped with the port
+    state_->make_timer = [node, group](std::function<void()> callback) {
+        return node->create_wall_timer(kWaitPeriod, std::move(callback), group);
+      };
   }
 
   /// Deactivate every activation.
   ~EventClient()
   {
     std::vector<std::shared_ptr<Activation>> activations;
+    rclcpp::TimerBase::SharedPtr timer;
     {
       std::lock_guard<std::mutex> lock(state_->mutex);
       activations = state_->activations;
+      timer = std::move(state_->waiting_timer);
+      state_->waiting.clear();
+    }
+    if (timer) {
+      timer->cancel();
     }
     for (const auto & activation : activations) {
       deactivate(activation);
@@ -110,10 +123,111 @@ public:
     {
       std::lock_guard<std::mutex> lock(state_->mutex);
       state_->activations.push_back(handle);
+      if (!state_->waiting.empty() || !state_->client->action_server_is_ready()) {
+        state_->waiting.emplace_back(handle, activation);
+        if (!state_->waiting_timer) {
+          std::weak_ptr<State> weak_state = state_;
+          state_->waiting_timer = state_->make_timer(
+            [weak_state]() {
+              auto state = weak_state.lock();
+              if (state) {
+                send_waiting(state);
+              }
+            });
+        }
+        return handle;
+      }
     }
+    send(state_, handle, activation);
+    return handle;
+  }
+
+  /// End an activation: none of its events runs the activity any more.
+  void deactivate(const std::shared_ptr<Activation> & handle)
+  {
+    typename GoalHandle::SharedPtr goal;
+    {
+      std::lock_guard<std::mutex> lock(state_->mutex);
+      if (!handle->ended.exchange(true)) {
+        goal = handle->goal_handle;
+      }
+    }
+    if (goal) {
+      state_->client->async_cancel_goal(goal);
+    }
+  }
+
+  /// Return the rclcpp_action client, for what this class does not offer.
+  typename rclcpp_action::Client<ActionT>::SharedPtr client() const
+  {
+    return state_->client;
+  }
+
+private:
+  /// Time between two looks for the server, while activations wait for it.
+  static constexpr std::chrono::milliseconds kWaitPeriod{100};
+  /// How long the server has been seen before the activations that waited go: the
+  /// client sees the server before the server has matched the client (DDS matches
+  /// each direction on its own), and a goal sent in between is lost.
+  static constexpr std::chrono::milliseconds kServerSettle{500};
+
+  /// What the client's callbacks share with this port, which may go first.
+  struct State
+  {
+    std::mutex mutex;
+    rclcpp::Logger logger = rclcpp::get_logger("event");
+    EventCallback on_event;
+    typename rclcpp_action::Client<ActionT>::SharedPtr client;
+    std::vector<std::shared_ptr<Activation>> activations;
+    /// Activations made before the server was there, and the timer that sends them.
+    std::vector<std::pair<std::shared_ptr<Activation>, Goal>> waiting;
+    rclcpp::TimerBase::SharedPtr waiting_timer;
+    std::function<rclcpp::TimerBase::SharedPtr(std::function<void()>)> make_timer;
+    bool server_seen = false;
+    std::chrono::steady_clock::time_point server_since;
+  };
+
+  /// Send the activations that waited, in their order, once the server is there.
+  static void send_waiting(const std::shared_ptr<State> & state)
+  {
+    std::vector<std::pair<std::shared_ptr<Activation>, Goal>> waiting;
+    {
+      std::lock_guard<std::mutex> lock(state->mutex);
+      if (!state->waiting_timer) {
+        return;
+      }
+      if (!state->client->action_server_is_ready()) {
+        state->server_seen = false;
+        return;
+      }
+      const auto now = std::chrono::steady_clock::now();
+      if (!state->server_seen) {
+        state->server_seen = true;
+        state->server_since = now;
+      }
+      if (now - state->server_since < kServerSettle) {
+        return;
+      }
+      waiting.swap(state->waiting);
+      // the executor holds the timer while this runs: dropping it here is safe
+      state->waiting_timer->cancel();
+      state->waiting_timer.reset();
+    }
+    for (auto & [handle, activation] : waiting) {
+      if (!handle->ended) {  // deactivated while it waited: nothing to send
+        send(state, handle, activation);
+      }
+    }
+  }
+
+  /// Send one activation.
+  static void send(
+    const std::shared_ptr<State> & state, const std::shared_ptr<Activation> & handle,
+    const Goal & activation)
+  {
     // the goal handle keeps these callbacks and the activation keeps the goal
     // handle: weak references break the cycle
-    std::weak_ptr<State> weak_state = state_;
+    std::weak_ptr<State> weak_state = state;
     std::weak_ptr<Activation> weak_handle = handle;
     typename rclcpp_action::Client<ActionT>::SendGoalOptions options;
     options.goal_response_callback = [weak_state, weak_handle](
@@ -146,41 +260,8 @@ public:
         }
         handle->ended = true;
       };
-    state_->client->async_send_goal(activation, options);
-    return handle;
+    state->client->async_send_goal(activation, options);
   }
-
-  /// End an activation: none of its events runs the activity any more.
-  void deactivate(const std::shared_ptr<Activation> & handle)
-  {
-    typename GoalHandle::SharedPtr goal;
-    {
-      std::lock_guard<std::mutex> lock(state_->mutex);
-      if (!handle->ended.exchange(true)) {
-        goal = handle->goal_handle;
-      }
-    }
-    if (goal) {
-      state_->client->async_cancel_goal(goal);
-    }
-  }
-
-  /// Return the rclcpp_action client, for what this class does not offer.
-  typename rclcpp_action::Client<ActionT>::SharedPtr client() const
-  {
-    return state_->client;
-  }
-
-private:
-  /// What the client's callbacks share with this port, which may go first.
-  struct State
-  {
-    std::mutex mutex;
-    rclcpp::Logger logger = rclcpp::get_logger("event");
-    EventCallback on_event;
-    typename rclcpp_action::Client<ActionT>::SharedPtr client;
-    std::vector<std::shared_ptr<Activation>> activations;
-  };
 
   static void accepted(
     const std::shared_ptr<State> & state, const std::shared_ptr<Activation> & handle,
