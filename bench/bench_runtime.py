@@ -183,9 +183,15 @@ def write_models(src: Path, cpp: bool = False) -> None:
 
 
 def build(root: Path) -> Path:
-    """Build the generated pair with colcon; return the install folder."""
+    """Build the workspace with colcon, optimised as a robot runs it; return the install folder.
+
+    Both sides of a comparison are built alike. Unoptimised, the C++ of the generated
+    node (the runtime's templates and wrappers, which the compiler inlines in a Release
+    build) cost it 1.2x of the hand-written one at 100 Hz; optimised, about 1.03x.
+    """
     env = ros_env.loopback_env(ros_env.free_domain_id())
-    result = ros_env.run([str(Path(sys.prefix) / 'bin' / 'colcon'), 'build'],
+    result = ros_env.run([str(Path(sys.prefix) / 'bin' / 'colcon'), 'build',
+                          '--cmake-args', '-DCMAKE_BUILD_TYPE=Release'],
                          env=env, cwd=root, timeout=900)
     if result.returncode:
         raise RuntimeError(f'colcon build failed:\n{result.stdout}{result.stderr}')
