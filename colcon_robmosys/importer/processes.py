@@ -35,12 +35,16 @@ class NodeProcess:
     remappings: dict[str, str] = field(default_factory=dict)
 
     @property
+    def fqn(self) -> str:
+        """Return the fully qualified name of its node (the executable's name if it sets none)."""
+        namespace = self.namespace.strip('/')
+        node = self.node or self.executable
+        return f'/{namespace}/{node}' if namespace else f'/{node}'
+
+    @property
     def named_node(self) -> str:
         """Return the fully qualified name its command line gives its node, '' if none."""
-        if not self.node:
-            return ''
-        namespace = self.namespace.strip('/')
-        return f'/{namespace}/{self.node}' if namespace else f'/{self.node}'
+        return self.fqn if self.node else ''
 
 
 def node_processes(domain: str, proc: Path = Path('/proc')) -> list[NodeProcess]:
@@ -110,11 +114,8 @@ def parse_command_line(argv: list[str]) -> NodeProcess | None:
 
 def process_of(processes: list[NodeProcess], name: str, namespace: str) -> NodeProcess | None:
     """Return the process that runs a node, None if none or different ones could."""
-    def matches(process: NodeProcess) -> bool:
-        node = process.node or process.executable
-        node_namespace = '/' + process.namespace.strip('/') if process.namespace else '/'
-        return node == name and node_namespace == namespace
-    candidates = [process for process in processes if matches(process)]
+    fqn = f"{namespace.rstrip('/')}/{name}"
+    candidates = [process for process in processes if process.fqn == fqn]
     # the same node twice (two launches of it): what they agree on is known
     if not candidates or len({(p.package, p.executable, p.language)
                               for p in candidates}) > 1:
