@@ -263,7 +263,7 @@ class EventClient:
                 return
             waiting, self._waiting = self._waiting, []
             self._node.destroy_timer(self._waiting_timer)
-            self._waiting_timer = None
+            self._waiting_timer = self._server_since = None
         for handle, activation in waiting:
             if not handle.ended:  # deactivated while it waited: nothing to send
                 self._send(handle, activation)

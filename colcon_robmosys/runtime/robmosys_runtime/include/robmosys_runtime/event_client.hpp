@@ -212,6 +212,7 @@ private:
       // the executor holds the timer while this runs: dropping it here is safe
       state->waiting_timer->cancel();
       state->waiting_timer.reset();
+      state->server_seen = false;
     }
     for (auto & [handle, activation] : waiting) {
       if (!handle->ended) {  // deactivated while it waited: nothing to send
