@@ -122,13 +122,21 @@ class LifecycleDriver:
         request.transition = Transition(
             id=getattr(Transition, f'TRANSITION_{label.upper()}'))
         start = self.state(fqn, timeout)
+        repeated = False
         while True:
             future = client.call_async(request)
             left = deadline - time.monotonic()
             self.executor.spin_until_future_complete(future, timeout_sec=min(5.0, left))
             if future.done():
-                return bool(future.result().success)
+                if future.result().success or not repeated:
+                    return bool(future.result().success)
+                # The request before this one may have come late rather than
+                # never: it took the node to the goal state, and this one
+                # then failed, being asked of that state.
+                return self.state(fqn, max(deadline - time.monotonic(), 1.0)) == \
+                    GOAL_STATES[label]
             client.remove_pending_request(future)
+            repeated = True
             now = self.state(fqn, max(deadline - time.monotonic(), 1.0))
             if now == GOAL_STATES[label]:
                 return True
