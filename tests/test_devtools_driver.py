@@ -8,7 +8,6 @@ import pytest
 
 from colcon_robmosys.devtools import ros_env
 from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
-
 from conftest import requires_ros
 
 pytestmark = [pytest.mark.integration, requires_ros]
