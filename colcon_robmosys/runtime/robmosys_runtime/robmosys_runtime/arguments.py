@@ -28,10 +28,10 @@ from __future__ import annotations
 import atexit
 import os
 import re
-import tempfile
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
 
-import yaml
+# yaml and tempfile are imported where used: bringup starts the instances'
+# processes before anything else, and most bring-ups need neither (issue 28)
 
 #: the severities of --log-level (rcutils), lowest first
 LOG_LEVELS = ('debug', 'info', 'warn', 'error', 'fatal')
@@ -164,6 +164,7 @@ def _flattened(tree: Any, prefix: str = '') -> Dict[str, Any]:
 
 def _entries(path: str) -> List[Tuple[str, Dict[str, Any]]]:
     """Return the entries of a parameter file: (node key, its values), in order."""
+    import yaml
     try:
         with open(path, encoding='utf-8') as stream:
             document = yaml.safe_load(stream)
@@ -236,6 +237,7 @@ def parameters_file(fqns: Sequence[str], system_file: str, namespace: str = '',
 
 def written(values: Dict[str, Dict[str, Any]]) -> str:
     """Return a parameter file made of the values of each node (see :func:`node_values`)."""
+    import yaml
     document = {fqn: {'ros__parameters': v} for fqn, v in values.items()}
     return temporary(yaml.safe_dump(document, default_flow_style=False, sort_keys=False),
                      'robmosys_params_', '.yaml')
@@ -243,6 +245,7 @@ def written(values: Dict[str, Dict[str, Any]]) -> str:
 
 def temporary(text: str, prefix: str, suffix: str) -> str:
     """Return a temporary file holding text, removed when the process ends."""
+    import tempfile
     handle, path = tempfile.mkstemp(prefix=prefix, suffix=suffix)
     with os.fdopen(handle, 'w', encoding='utf-8') as stream:
         stream.write(text)

@@ -20,18 +20,22 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import select
 import signal
 import sys
 import threading
+import time
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from ament_index_python.packages import get_package_share_directory
 from robmosys_runtime.arguments import (
     any_given, ArgumentError, ARGUMENTS, log_level, moved_description, node_values,
     normalized_namespace, sim_time, temporary, written)
+from robmosys_runtime.levels import Outcome, report
 from robmosys_runtime.locations import resolve_locations
 from robmosys_runtime.output import say
-from robmosys_runtime.processes import CPP_GROUP, NotInstalled, plan_processes, Processes
+from robmosys_runtime.processes import (
+    CPP_GROUP, NotInstalled, plan_processes, Processes, shared_python)
 
 # rclpy is imported once the instances are starting: they start it too, in
 # parallel (see main)
@@ -112,22 +116,59 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     # take a third of a second, which they spend starting in parallel. Their
     # exits are watched once the manager is there (Manager.start).
     processes = Processes(on_exit=None)
+    signalled = threading.Event()
+    manager: Optional[Any] = None
+
+    def on_signal(signum: int, frame: Any) -> None:
+        if signalled.is_set():
+            # a second signal: no more waiting
+            processes.kill()
+            os._exit(128 + signum)
+        signalled.set()
+        if manager is not None:
+            manager.stopping.set()
+
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, on_signal)
+    told: Optional[Dict[str, str]] = None
+    printed = False
     if not args.attach:
+        # the shared process that brings up every managed instance tells them
+        # through a pipe, read before this process makes a DDS participant
+        pipe = os.pipe() if tells_all(description, args.processes) else None
         try:
             groups = plan_processes(description, args.description, params_file,
-                                    shared=args.processes)
+                                    shared=args.processes, report_fd=pipe and pipe[1])
         except NotInstalled as error:
+            if pipe:
+                os.close(pipe[0])
+                os.close(pipe[1])
             return not_installed(error)
         for group, (_, command_line) in groups.items():
-            processes.start(group, command_line)
+            processes.start(group, command_line, pass_fds=[pipe[1]] if (
+                pipe and '--report-fd' in command_line) else [])
+        if pipe:
+            os.close(pipe[1])
+            told = read_told(pipe[0], args.start_timeout + args.timeout, signalled)
+            managed = [i['instance'] for i in description['instances'] if i['managed']]
+            if told is not None and all(told.get(n) == 'active' for n in managed):
+                # every managed instance is up: said before this process makes
+                # a DDS participant, which the instances would have discovered
+                # while they were being made (issue 28)
+                print(report(Outcome(active=managed), len(managed)), flush=True)
+                printed = True
 
     import rclpy
     from rclpy.executors import MultiThreadedExecutor
     from robmosys_runtime.announce import announce_system
-    from robmosys_runtime.manager import Manager, report, serve
+    from robmosys_runtime.manager import Manager, serve
 
     rclpy.init(args=['--ros-args', '-r', f'__node:={package}_bringup',
                      *description.get('ros_arguments', ())])
+    # rclpy.init installed handlers that shut its context down at once: the
+    # manager needs it to bring the system down
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, on_signal)
     node = rclpy.create_node(f'{package}_bringup',
                              namespace=description.get('namespace') or None)
     announce_system(node, package)
@@ -135,19 +176,9 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     executor.add_node(node)
     spinner = threading.Thread(target=serve, args=(executor,), daemon=True)
     spinner.start()
-    manager = Manager(node, description, params_file, args, processes)
-    signalled = threading.Event()
-
-    def on_signal(signum: int, frame: Any) -> None:
-        if signalled.is_set():
-            # a second signal: no more waiting
-            manager.processes.kill()
-            os._exit(128 + signum)
-        signalled.set()
+    manager = Manager(node, description, params_file, args, processes, told=told)
+    if signalled.is_set():
         manager.stopping.set()
-
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signum, on_signal)
     status = 0
     try:
         manager.start()
@@ -155,7 +186,8 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
             pass
         if not signalled.is_set():
             outcome = manager.activation.wait()
-            print(report(outcome, len(manager.managed)), flush=True)
+            if not printed or not outcome.ok:
+                print(report(outcome, len(manager.managed)), flush=True)
             if not outcome.ok:
                 status = 1
                 if args.exit_on_failure:
@@ -216,6 +248,47 @@ def not_installed(error: NotInstalled) -> int:
     for problem in error.problems:
         say('error', f'{problem}; nothing was started')
     return 1
+
+
+def tells_all(description: Dict[str, Any], shared: Optional[bool]) -> bool:
+    """
+    Tell whether the shared process of this host brings up every managed instance.
+
+    It then tells ``bringup`` what it brought up through a pipe, and bringup
+    needs no DDS participant of its own to report the bring-up.
+    """
+    managed = {i['instance'] for i in description['instances'] if i['managed']}
+    return bool(managed) and managed <= set(shared_python(description, '', shared))
+
+
+def read_told(reading: int, timeout: float,
+              signalled: threading.Event) -> Optional[Dict[str, str]]:
+    """
+    Return the states the shared process wrote to a pipe, and close it.
+
+    None if it wrote none: it ended first, or did not write within timeout
+    seconds, or a signal came (the manager then learns them as from a launch).
+    """
+    deadline = time.monotonic() + timeout
+    data = b''
+    try:
+        while not signalled.is_set() and time.monotonic() < deadline:
+            ready, _, _ = select.select([reading], [], [], 0.05)
+            if not ready:
+                continue
+            chunk = os.read(reading, 65536)
+            if not chunk:
+                break
+            data += chunk
+            if data.endswith(b'\n'):
+                break
+    finally:
+        os.close(reading)
+    try:
+        states = json.loads(data)
+    except ValueError:
+        return None
+    return {str(k): str(v) for k, v in states.items()} if isinstance(states, dict) else None
 
 
 def check(description: Dict[str, Any], args: argparse.Namespace) -> int:

@@ -3,8 +3,8 @@
 """
 Several Python instances of a system in one process (``processes: shared``).
 
-``python -m robmosys_runtime.container [--activate] DESCRIPTION PARAMS_FILE INSTANCE...
-[--ros-args ...]``
+``python -m robmosys_runtime.container [--activate [--report-fd FD]] DESCRIPTION PARAMS_FILE
+INSTANCE... [--ros-args ...]``
 creates the node of each instance from its component's class, with the name,
 namespace, remappings and parameter file the launch files would give it, and
 spins them all on one executor (:func:`run_nodes`): the one the system names for
@@ -17,7 +17,9 @@ the system manager brings the system up) it also configures and activates
 each managed instance whose predecessors (``after``) it activated itself, in
 the model's order, through rclpy's own transitions, before it serves any
 request, and tells the manager, in one message, which it brought to which
-state (:mod:`robmosys_runtime.reports`): the manager does not take each
+state (:mod:`robmosys_runtime.reports`), and with ``--report-fd`` also on
+that file descriptor, one line of JSON (``bringup`` reads it from a pipe
+before it makes a DDS participant of its own): the manager does not take each
 through two transitions of the lifecycle services, nor asks each its state
 (each call waiting for the service of another process to be discovered was
 what the manager added to the floor, issue 28). An instance that fails a
@@ -28,6 +30,7 @@ from __future__ import annotations
 
 import importlib
 import json
+import os
 import sys
 from typing import Any, Callable, cast, Dict, List, Optional
 
@@ -76,17 +79,26 @@ def activate_in_order(instances: List[Dict[str, Any]], nodes: List[Node],
     return active
 
 
-def bring_up(instances: List[Dict[str, Any]], nodes: List[Node], reporter: Reporter) -> None:
+def bring_up(instances: List[Dict[str, Any]], nodes: List[Node], reporter: Reporter,
+             report_fd: Optional[int] = None) -> None:
     """
     Activate what can be (:func:`activate_in_order`); tell the manager the states known.
 
     Those activated are active, those not touched unconfigured; one that
-    failed a transition is left out: the manager asks it its state.
+    failed a transition is left out: the manager asks it its state. The
+    states are published, and written to ``report_fd`` if given, which is
+    then closed.
     """
     untouched: List[str] = []
     active = activate_in_order(instances, nodes, untouched)
-    reporter.brought_up({**dict.fromkeys(untouched, 'unconfigured'),
-                         **dict.fromkeys(active, 'active')})
+    states = {**dict.fromkeys(untouched, 'unconfigured'), **dict.fromkeys(active, 'active')}
+    reporter.brought_up(states)
+    if report_fd is not None:
+        try:
+            with os.fdopen(report_fd, 'w', encoding='utf-8') as stream:
+                stream.write(json.dumps(states) + '\n')
+        except OSError:
+            pass  # bringup stopped reading: it asks the instances
 
 
 def main(argv: Optional[List[str]] = None) -> int:
@@ -96,7 +108,16 @@ def main(argv: Optional[List[str]] = None) -> int:
     ros_arguments = args[args.index('--ros-args'):] if '--ros-args' in args else []
     args = args[:len(args) - len(ros_arguments)]
     activate = args[:1] == ['--activate']
-    description_file, params_file, *names = args[1:] if activate else args
+    args = args[1:] if activate else args
+    report_fd: Optional[int] = None
+    if activate and args[:1] == ['--report-fd'] and len(args) > 1 and args[1].isdigit():
+        report_fd = int(args[1])
+        args = args[2:]
+    if len(args) < 2:
+        print('container: error: usage: container [--activate [--report-fd FD]] DESCRIPTION '
+              'PARAMS_FILE INSTANCE...', file=sys.stderr)
+        return 2
+    description_file, params_file, *names = args
     with open(description_file, encoding='utf-8') as stream:
         description = json.load(stream)
     instances = {i['instance']: i for i in description['instances']}
@@ -110,7 +131,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     return run_nodes([node_factory(i, params_file) for i in chosen],
                      executor_name=description.get('executors', {}).get('python'),
                      args=['container', *ros_arguments] if ros_arguments else None,
-                     before_spin=(lambda nodes: bring_up(chosen, nodes, reporter))
+                     before_spin=(lambda nodes: bring_up(chosen, nodes, reporter, report_fd))
                      if activate else None,
                      unspun=[reporter.make] if activate else ())
 

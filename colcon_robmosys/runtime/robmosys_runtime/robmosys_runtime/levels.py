@@ -64,3 +64,12 @@ class Outcome:
     def ok(self) -> bool:
         """Tell whether every instance is active."""
         return not self.failed and not self.held_back
+
+
+def report(outcome: Outcome, total: int) -> str:
+    """Return the final report of a bring-up, one line per problem."""
+    lines = [f'bringup: {len(outcome.active)} of {total} managed instances active']
+    lines += [f'bringup: {name} failed: {why}' for name, why in sorted(outcome.failed.items())]
+    lines += [f"bringup: {name} held back by {', '.join(by)}"
+              for name, by in sorted(outcome.held_back.items())]
+    return '\n'.join(lines)

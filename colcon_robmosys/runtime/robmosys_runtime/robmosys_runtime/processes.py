@@ -11,7 +11,6 @@ a 50-instance system then does not start 50 Python interpreters.
 
 from __future__ import annotations
 
-import ctypes
 import functools
 import os
 import signal
@@ -50,6 +49,7 @@ def _ending_with_parent() -> Optional[Callable[[], None]]:
     """
     if not sys.platform.startswith('linux'):
         return None
+    import ctypes  # here: bringup starts the instances before anything else
     try:
         prctl = ctypes.CDLL(None, use_errno=True).prctl
     except (OSError, AttributeError):
@@ -77,11 +77,15 @@ class Processes:
         self._stopping = threading.Event()
         self._watch = threading.Thread(target=self._watch_loop, daemon=True)
 
-    def start(self, name: str, args: Sequence[str]) -> None:
-        """Start an instance in a session of its own: a Ctrl-C reaches only bringup."""
+    def start(self, name: str, args: Sequence[str], pass_fds: Sequence[int] = ()) -> None:
+        """
+        Start an instance in a session of its own: a Ctrl-C reaches only bringup.
+
+        :param pass_fds: file descriptors the process inherits (``--report-fd``)
+        """
         self._processes[name] = subprocess.Popen(
             list(args), stdin=subprocess.DEVNULL, start_new_session=True,
-            preexec_fn=self._preexec)
+            preexec_fn=self._preexec, pass_fds=tuple(pass_fds))
 
     def started(self) -> bool:
         """Tell whether a process was started."""
@@ -220,7 +224,7 @@ def container_fqn(description: Dict[str, Any], host: str = '') -> str:
 
 def plan_processes(description: Dict[str, Any], description_file: str, params_file: str,
                    host: str = '', shared: Optional[bool] = None,
-                   containers: bool = True) -> Groups:
+                   containers: bool = True, report_fd: Optional[int] = None) -> Groups:
     """
     Return the processes that run the instances of a host ('' for the manager's).
 
@@ -229,6 +233,8 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
         (``processes: shared``)
     :param containers: whether C++ instances may share a container (the
         manager loads them into it, or the bringup of their host: ``CPP_GROUP``)
+    :param report_fd: where the shared process of the manager's host writes the
+        states it brought its instances to (``container --report-fd``)
     :raises NotInstalled: when a package that an instance needs is not installed
     """
     if shared is None:
@@ -263,7 +269,9 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
         # (robmosys_runtime.container); the manager finds those active
         groups['python instances' + (f' on {host}' if host else '')] = (together, [
             sys.executable, '-m', 'robmosys_runtime.container',
-            *([] if host else ['--activate']), description_file, params_file, *together] +
+            *([] if host else ['--activate']),
+            *(['--report-fd', str(report_fd)] if report_fd is not None and not host else []),
+            description_file, params_file, *together] +
             (['--ros-args', *ros_arguments] if ros_arguments else []))
     if loaded:
         # rclcpp_components' container of the system's executor; the manager loads the nodes

@@ -129,6 +129,13 @@ class Reports:
             DiagnosticStatus, report_topic(description), self._heard, QOS) \
             if self._expected else None
 
+    def told(self, states: Dict[str, str]) -> None:
+        """Take the states the process told otherwise (``bringup`` reads them from a pipe)."""
+        with self._changed:
+            self._begun = self._done = True
+            self._states.update(states)
+            self._changed.notify_all()
+
     def _heard(self, message: DiagnosticStatus) -> None:
         with self._changed:
             self._begun = True

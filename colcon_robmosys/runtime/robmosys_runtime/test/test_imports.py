@@ -22,6 +22,16 @@ def test_bringup_starts_the_instances_before_it_imports_rclpy():
     assert shown.stdout.strip() == '[]'
 
 
+def test_bringup_starts_the_instances_before_it_imports_what_it_may_not_need():
+    # YAML (a parameter file given), temporary files and ctypes (a host's
+    # bringup): 60 ms before the first process starts, where none is needed
+    shown = subprocess.run(
+        [sys.executable, '-c', 'import sys, robmosys_runtime.bringup\n'
+         "print(sorted({'yaml', 'tempfile', 'ctypes'} & set(sys.modules)))"],
+        capture_output=True, text=True, timeout=60, check=True)
+    assert shown.stdout.strip() == '[]'
+
+
 def test_the_check_of_parameter_files_runs_without_rclpy():
     # check_params runs offline, where the system is installed: no rclpy, no graph
     shown = subprocess.run(

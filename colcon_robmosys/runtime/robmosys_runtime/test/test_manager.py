@@ -4,6 +4,7 @@
 
 import argparse
 import threading
+import time
 
 import rclpy
 from rclpy.executors import MultiThreadedExecutor, SingleThreadedExecutor
@@ -137,7 +138,49 @@ def test_each_service_answers_from_the_moment_it_exists(monkeypatch):
         assert [s for s in said if s[0] == 'error'] == [], said
         assert answers['~/report'].success, answers['~/report'].message
         assert not answers['~/conformance'].success
-        assert made.watch is not None
+        assert answers['~/conformance'].message == \
+            'the conformance watch starts once the system is up'
+        # made once the bring-up (of nothing here) is over
+        assert made.watch is None
+        made.start()
+        assert _wait_until(lambda: made.watch is not None, 10)
+        made.stopping.set()
     finally:
         node.destroy_node()
         rclpy.try_shutdown(context=context)
+
+
+def test_the_watch_is_made_once_the_bring_up_is_over(monkeypatch):
+    """Its node and subscriptions, made while the instances start, slowed them (issue 28)."""
+    monkeypatch.setattr(manager, 'say', lambda level, text: None)
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    node = rclpy.create_node('late_bringup', context=context)
+    args = argparse.Namespace(
+        attach=True, processes=None, description='', timeout=2.0, start_timeout=2.0,
+        heartbeat=0.0, diagnostics_period=1.0, check_period=1.0, silence=5.0)
+    # an instance that never appears: its bring-up lasts the start timeout
+    description = {'package': 'late', 'namespace': '', 'connections': [], 'instances': [
+        {'instance': 'absent', 'fqn': '/absent', 'name': 'absent', 'namespace': '',
+         'managed': True, 'after': []}]}
+    try:
+        made = manager.Manager(node, description, '', args)
+        made.start()
+        assert made.activation.running()
+        time.sleep(1.0)
+        assert made.watch is None
+        assert _wait_until(lambda: not made.activation.running(), 20)
+        assert _wait_until(lambda: made.watch is not None, 10)
+        made.stopping.set()
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
+
+
+def _wait_until(condition, timeout):
+    deadline = time.monotonic() + timeout
+    while not condition():
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(0.05)
+    return True

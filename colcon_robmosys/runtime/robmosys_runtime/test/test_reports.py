@@ -2,12 +2,15 @@
 # Licensed under the Apache License, Version 2.0
 """What the shared process tells the manager it brought up, on real rclpy (reports.py)."""
 
+import json
+import os
 import threading
 import time
 
 from rclpy.lifecycle import Node as LifecycleNode
 from rclpy.lifecycle import TransitionCallbackReturn
 from robmosys_runtime.activation import SystemActivation
+from robmosys_runtime.bringup import read_told, tells_all
 from robmosys_runtime.container import bring_up
 from robmosys_runtime.reports import Reporter, reporter_name, Reports
 
@@ -94,3 +97,77 @@ def test_the_activation_takes_a_told_state_and_asks_what_was_not_told(spinning):
     # its services are looked for in the background: not there, it is still discovering
     assert activation.discovering('told')
     assert not activation.discovering('asked')
+
+
+def test_the_states_go_to_the_pipe_of_bringup_too_and_it_is_closed(spinning):
+    instances = [{'instance': 'first', 'managed': True},
+                 {'instance': 'refusing', 'managed': True},
+                 {'instance': 'after_refusing', 'managed': True, 'after': ['refusing']}]
+    nodes, reporter = _process(spinning, instances, refusing={'refusing'})
+    reading, writing = os.pipe()
+    bring_up(instances, nodes, reporter, writing)
+    told = read_told(reading, 5.0, threading.Event())
+    assert told == {'first': 'active', 'after_refusing': 'unconfigured'}
+    # both ends are closed: the process's by bring_up, bringup's by read_told
+    for fd in (reading, writing):
+        try:
+            os.fstat(fd)
+        except OSError:
+            continue
+        raise AssertionError(f'file descriptor {fd} is still open')
+    # and a manager made afterwards takes them as told, at once
+    manager = spinning.add(LifecycleNode('manager', context=spinning.context))
+    reports = Reports(manager, DESCRIPTION, ['first', 'refusing', 'after_refusing'])
+    reports.told(told)
+    start = time.monotonic()
+    assert reports.take('first', _never) == 'active'
+    assert reports.take('after_refusing', _never) == 'unconfigured'
+    assert reports.take('refusing', _never) is None
+    assert time.monotonic() - start < 0.5
+
+
+def test_a_pipe_that_says_nothing_leaves_the_states_to_the_manager():
+    # the process ended before it wrote (end of file)
+    reading, writing = os.pipe()
+    os.close(writing)
+    assert read_told(reading, 5.0, threading.Event()) is None
+    # it wrote something else than the states
+    reading, writing = os.pipe()
+    os.write(writing, b'["first"]\n')
+    assert read_told(reading, 5.0, threading.Event()) is None
+    os.close(writing)
+    # nothing within the timeout, or a signal came: no longer waited for
+    for timeout, signalled in ((0.3, threading.Event()), (30.0, threading.Event())):
+        reading, writing = os.pipe()
+        if timeout > 1:
+            threading.Timer(0.3, signalled.set).start()
+        start = time.monotonic()
+        assert read_told(reading, timeout, signalled) is None
+        assert time.monotonic() - start < 3
+        os.close(writing)
+    # a line written in pieces is read whole
+    reading, writing = os.pipe()
+    text = json.dumps({'first': 'active'}).encode() + b'\n'
+    os.write(writing, text[:5])
+    threading.Timer(0.2, lambda: os.write(writing, text[5:])).start()
+    assert read_told(reading, 5.0, threading.Event()) == {'first': 'active'}
+    os.close(writing)
+
+
+def test_bringup_reads_the_pipe_only_where_the_shared_process_brings_up_every_managed():
+    def system(*instances, processes='shared'):
+        return {'processes': processes, 'instances': [
+            dict({'managed': True, 'python_class': 'pkg.mod:Class'}, **i) for i in instances]}
+    assert tells_all(system({'instance': 'a'}, {'instance': 'b'}), None)
+    # an unmanaged instance elsewhere does not matter
+    assert tells_all(system({'instance': 'a'}, {'instance': 'b', 'managed': False,
+                                                'python_class': None, 'plugin': 'x'}), None)
+    # one per instance; a C++ instance; another host; an instance run by a command
+    assert not tells_all(system({'instance': 'a'}, processes='per-instance'), None)
+    assert not tells_all(system({'instance': 'a'}), False)
+    assert not tells_all(system({'instance': 'a'}, {'instance': 'b', 'python_class': None,
+                                                    'plugin': 'x'}), None)
+    assert not tells_all(system({'instance': 'a'}, {'instance': 'b', 'host': 'arm'}), None)
+    assert not tells_all(system({'instance': 'a'}, {'instance': 'b', 'command': ['x']}), None)
+    # nothing managed: nothing to tell
+    assert not tells_all(system({'instance': 'a', 'managed': False}), None)
