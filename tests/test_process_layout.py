@@ -109,6 +109,24 @@ def test_a_shared_system_starts_processes_as_bringup_does(tmp_path):
     assert node.name == 'pub_cpp'
 
 
+def test_one_shared_instance_runs_in_the_shared_process_as_under_bringup(tmp_path):
+    # the system's own files start its one Python instance as bringup does, in
+    # the shared process that tells the manager it brought it up: in a process
+    # of its own, it told nothing, and the manager waited 10 s before it asked
+    model = crowd_model(2, processes='shared')
+    del model['systems'][0]['instances']['sub_0']
+    model['systems'][0]['connections'] = []
+    out = _generate(tmp_path, model)
+    for name in ('crowd_system.launch.py', 'crowd_system.nodes.launch.py'):
+        launch = out / 'launch' / name
+        assert read_launch_file(launch, out) == []
+        [shared] = _calls(launch, 'ExecuteProcess')
+        assert "'pub_0'" in ast.unparse(shared)
+    # the file of the instance alone has no manager: a process of its own
+    [node] = read_launch_file(out / 'launch' / 'crowd_system.pub_0.launch.py', out)
+    assert node.name == 'pub_0'
+
+
 def test_each_host_runs_its_cpp_instances_in_a_container_of_its_own(tmp_path):
     model = crowd_model(8, cpp=True, processes='shared')
     # the C++ pair on robot1, one Python pair on robot2, the rest on the manager's host

@@ -234,10 +234,14 @@ def launch_files(system: System, nodes: tuple[SystemNode, ...],
         def waiting(chosen: tuple[SystemNode, ...]) -> tuple[SystemNode, ...]:
             return tuple(replace(n, activate_after=tuple(a for a in n.after if a in managed))
                          for n in chosen)
-        # as bringup: the instances of one file share processes (one instance
-        # alone needs none), C++ ones a container of their host (not of one instance)
+        # as bringup: the instances of one file share processes, C++ ones a
+        # container of their host (not of one instance). The system's own file
+        # does so for one instance too, as bringup does: its manager waits for
+        # the shared process to tell what it brought up (10 s, where a process
+        # of its own ran the instance and told nothing); the file of one
+        # instance has no manager, and needs no shared process.
+        shared = process_layout(system) == 'shared' and (len(selected) > 1 or suffix == '')
         files.append(LaunchFile(suffix, banner, system.package, PARAMS_FILE,
-                                waiting(selected), what, waiting(elsewhere),
-                                shared=process_layout(system) == 'shared' and len(selected) > 1,
+                                waiting(selected), what, waiting(elsewhere), shared=shared,
                                 containers=host is not None, host=host or ''))
     return tuple(files)
