@@ -20,12 +20,15 @@ process group, as a terminal sends it) and the seconds until every process
 ended. Prints each time / the slowest single instance's through the same path
 (goal: at most 1.5x at 20 and at 50) and / the floor (``bringup_floor.py``: the
 same nodes made and activated in one process by rclpy's own transitions, no
-manager; goal: the manager adds at most 1.15x). Then ``--hang-runs`` bring-ups
+manager; through launch, that process started by launch, whose own start is not
+the manager's; goal: the manager adds at most 1.15x). Then ``--hang-runs`` bring-ups
 in a row of the system of ``--hang-size`` instances through each path: how many
 came up, failed, hung, or needed more than SIGINT to end. With ``--cpp`` (a
 prefix with rclcpp_components), the same with C++ components: the largest
-system in the component container against the slowest single C++ instance.
-Each goal is printed "met" or "NOT met".
+system in the component container against the slowest single C++ instance,
+and against its floor (``bench/cpp_floor``: the same component nodes made by
+their factories and activated in one process, no manager). Each goal is
+printed "met" or "NOT met".
 
     make bench-bringup                    # or: .venv/bin/python bench/bench_bringup.py
 """
@@ -36,6 +39,7 @@ import argparse
 import json
 import os
 from pathlib import Path
+import shutil
 import signal
 import statistics
 import subprocess
@@ -52,6 +56,8 @@ from colcon_robmosys.devtools import ros_env
 
 #: makes and activates a system's nodes in one process, with no manager
 FLOOR = Path(__file__).resolve().parent / 'bringup_floor.py'
+#: the package of the C++ floor, built with the C++ systems
+CPP_FLOOR = Path(__file__).resolve().parent / 'cpp_floor'
 #: the "processes" of the floor's cases
 FLOOR_LAYOUT = 'one, no manager (floor)'
 #: what ``ros2 launch <file>`` does (ros2cli is not on PyPI either)
@@ -64,6 +70,14 @@ service = LaunchService(argv=sys.argv[2:])
 service.include_launch_description(LaunchDescription([
     IncludeLaunchDescription(PythonLaunchDescriptionSource(sys.argv[1]))]))
 sys.exit(service.run())
+"""
+#: the floor through launch: its one process, as launch starts a process
+FLOOR_LAUNCH_FILE = """from launch import LaunchDescription
+from launch.actions import ExecuteProcess
+
+
+def generate_launch_description():
+    return LaunchDescription([ExecuteProcess(cmd={command!r}, output='screen')])
 """
 #: the goals of issue 28 (P5)
 GOAL_SINGLE = 1.5
@@ -120,6 +134,8 @@ def write_workspace(src: Path, sizes: Sequence[int], cpp_sizes: Sequence[int] = 
     python: list[int | str] = ['beat', 'hear', *sorted(set(sizes))]
     cpp: list[int | str] = ['beat', 'hear', *sorted(set(cpp_sizes))] if cpp_sizes else []
     systems = [_system(s, False) for s in python] + [_system(s, True) for s in cpp]
+    if cpp_sizes:
+        shutil.copytree(CPP_FLOOR, src / 'bench_cpp_floor')
     path = src / 'bench_systems' / 'robmosys.yaml'
     path.parent.mkdir(parents=True)
     path.write_text(yaml.safe_dump({'robmosys': 1, 'defaults': METADATA,
@@ -214,20 +230,40 @@ def _processes_of(marker: str) -> list[int]:
     return pids
 
 
-def floor(install: Path, package: str, count: int, timeout: float) -> tuple[str, float]:
+def floor(install: Path, package: str, count: int, timeout: float,
+          cpp: bool = False, path: str = 'no path') -> tuple[str, float]:
     """
     Make and activate a system's nodes with no manager; return the outcome and the seconds.
 
     The time is from the start of the process to its report, as for bring_up.
+    Python nodes are made by ``bringup_floor.py``, C++ component nodes by
+    ``bench/cpp_floor`` (from a list of the instances, written beside the
+    install folder). With ``path`` ``launch``, launch starts that process
+    (``ExecuteProcess``, as ``ros2 launch`` would): what launch itself costs
+    is in the floor of the launch path, not in what its manager adds.
     """
     env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
     description = description_of(install, package)
-    params = description.parent / json.loads(description.read_text())['params_file']
+    loaded = json.loads(description.read_text())
+    params = description.parent / loaded['params_file']
+    command = [sys.executable, str(FLOOR), str(description), str(params)]
+    if cpp:
+        listing = install.parent / f'{package}.floor'
+        listing.write_text(''.join(
+            f"{i['package']} {i['plugin']} {i['name']} {i['namespace'] or '/'} "
+            f'--params-file {params}'
+            + ''.join(f' -r {source}:={target}' for source, target in i['remappings'])
+            + '\n' for i in loaded['instances']))
+        command = [str(install / 'bench_cpp_floor' / 'lib' / 'bench_cpp_floor' / 'floor'),
+                   str(listing)]
+    if path == 'launch':
+        launch_file = install.parent / f"{package}.floor{'.cpp' if cpp else ''}.launch.py"
+        launch_file.write_text(FLOOR_LAUNCH_FILE.format(command=command))
+        command = [sys.executable, '-c', LAUNCHER, str(launch_file)]
     done = f'floor: {count} of {count} active'
     with tempfile.TemporaryFile() as log:
         start = time.monotonic()
-        process = subprocess.Popen([sys.executable, str(FLOOR), str(description), str(params)],
-                                   env=env, stdout=log, stderr=subprocess.STDOUT,
+        process = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT,
                                    stdin=subprocess.DEVNULL)
         outcome, took = 'hung', timeout
         try:
@@ -305,9 +341,18 @@ def cases_of(sizes: Sequence[int], paths: Sequence[str], layouts: Sequence[str],
                 for layout in layouts if path == 'bringup' else ['shared']:
                     cases[(f'{size} {kind}instances', path, layout)] = (
                         system_package(size, cpp), size)
-        for size in () if cpp else sizes:
-            cases[(f'{size} instances', 'no path', FLOOR_LAYOUT)] = (system_package(size), size)
+        for size in cpp_sizes if cpp else sizes:
+            for path in ['no path', *(['launch'] if 'launch' in paths else [])]:
+                cases[(f'{size} {kind}instances', path, FLOOR_LAYOUT)] = (
+                    system_package(size, cpp), size)
     return cases
+
+
+def floor_of(times: dict[tuple[str, str, str], list[float]], system: str,
+             path: str) -> tuple[str, str, str]:
+    """Return the floor case of a system through a path: its own, or the one of no path."""
+    own = (system, path, FLOOR_LAYOUT)
+    return own if times.get(own) else (system, 'no path', FLOOR_LAYOUT)
 
 
 def verdict(met: bool) -> str:
@@ -332,12 +377,22 @@ def print_goals(times: dict[tuple[str, str, str], list[float]], sizes: Sequence[
                           'of the slowest single instance: NOT met (not up)')
                     continue
                 reference = max(s for s in singles if s is not None)
+                floor_case = floor_of(times, f'{size} {kind}instances', path)
+                base = fastest(floor_case)
+                # where the goal lies below the floor, it says so
+                below = f'; the floor alone: {ratio(base, reference)}' \
+                    if base is not None and base > GOAL_SINGLE * reference else ''
                 print(f'goal: {size} {kind}instances through {path} within {GOAL_SINGLE}x of '
                       f'the slowest single instance: {ratio(took, reference)} '
-                      f'({took:.2f} s against {reference:.2f} s): '
+                      f'({took:.2f} s against {reference:.2f} s{below}): '
                       f'{verdict(took <= GOAL_SINGLE * reference)}')
-                floor_case = (f'{size} instances', 'no path', FLOOR_LAYOUT)
-                base = fastest(floor_case)
+                if kind and base is not None:
+                    # no goal of its own: how far from its floor the container path is
+                    ups = times[(f'{size} {kind}instances', path, 'shared')]
+                    middle = statistics.median(ups) / statistics.median(times[floor_case])
+                    print(f'{size} {kind}instances through {path} against their floor (no '
+                          f'manager, no container services): {ratio(took, base)} (medians: '
+                          f'{middle:.2f}x)')
                 if not kind and base is not None:
                     # the fastest of each against each other, and the medians: a
                     # lucky round of one side alone does not decide it
@@ -398,7 +453,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             for case in order:
                 package, count = cases[case]
                 if case[2] == FLOOR_LAYOUT:
-                    outcome, took = floor(install, package, count, args.timeout)
+                    outcome, took = floor(install, package, count, args.timeout,
+                                          cpp='C++' in case[0], path=case[1])
                     stop = ''
                 else:
                     outcome, took, ended = bring_up(install, package, case[1], case[2], count,
@@ -450,11 +506,11 @@ def print_table(cases: Cases, times: dict[tuple[str, str, str], list[float]]) ->
                    and ('C++' in c[0]) == cpp and c[1] == case[1]]
         reference = max((s for s in singles if s is not None), default=None)
         size = case[0].split(' ')[0]
-        base = fastest((f'{size} instances', 'no path', FLOOR_LAYOUT))
+        base = fastest(floor_of(times, f"{size} {'C++ ' if cpp else ''}instances", case[1]))
         rows.append((*case, len(times[case]), f'{took:.2f}' if took else '-',
                      ratio(took, reference) if took and reference and None not in singles
                      else '-',
-                     ratio(took, base) if took and base and not cpp else '-'))
+                     ratio(took, base) if took and base else '-'))
     print('time to all-active / the slowest single instance of the same path / the floor')
     print(table(('system', 'path', 'processes', 'runs up', 'fastest s', '/ slowest single',
                  '/ floor'), rows))

@@ -186,6 +186,28 @@ def test_bringup_benchmark_prints_ratios_and_counts_hangs(capsys):
                      r'\d+\.\d\d s of 6: (met|NOT met)', out), out
 
 
+@requires_ros
+def test_bringup_benchmark_brings_cpp_systems_up_against_their_floor(capsys):
+    """With rclcpp_components and launch_ros: the C++ systems, and the floors, come up."""
+    if bench_runtime.cpp_skip_reason() is not None:
+        pytest.skip(bench_runtime.cpp_skip_reason())
+    assert bench_bringup.main(['--sizes', '2', '--rounds', '1', '--hang-runs', '0',
+                               '--timeout', '90', '--paths', 'bringup', 'launch',
+                               '--cpp', '4']) == 0
+    out = capsys.readouterr().out
+    assert 'launch path: skipped' not in out, out
+    # through each path: the C++ singles and the system of 4 in the container; the
+    # floors (the one of launch started by launch), all up
+    assert len(re.findall(r'round 1, .*C\+\+.*: up in', out)) == 8, out
+    assert not re.search(r'round 1, .*: (failed|hung|stuck|killed)', out), out
+    assert re.search(rf'^\| 2 instances +\| launch +\| one, no manager \(floor\) '
+                     rf'.* {RATIO} +\|', out, re.MULTILINE), out
+    assert re.search(rf'^\| 4 C\+\+ instances +\| no path +\| one, no manager \(floor\) '
+                     rf'.* {RATIO} +\|', out, re.MULTILINE), out
+    assert re.search(r'^4 C\+\+ instances through bringup against their floor \(no manager, '
+                     rf'no container services\): {RATIO} \(medians: ', out, re.MULTILINE), out
+
+
 def test_cpp_pairs_are_skipped_without_rclcpp_and_run_with_it(tmp_path):
     """What decides whether the C++ pairs are built: rclcpp & co. in a prefix."""
     reason = bench_runtime.cpp_skip_reason({})
