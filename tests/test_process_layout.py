@@ -93,12 +93,18 @@ def test_a_shared_system_starts_processes_as_bringup_does(tmp_path):
         # --ros-args ..., as bringup; the file with the manager has the process bring up
         # what it can; the description, the parameters and the ROS arguments are those of
         # the launch arguments (robmosys_runtime.launching)
-        assert ("'--activate'" in cmd) == (name == 'crowd_system.launch.py')
-        cmd = [c for c in cmd if c != "'--activate'"]
+        # and writes what it brought up where the manager reads it (--told-file)
+        self_activating = ["'--activate'", "'--report-file'", 'arguments.told_file']
+        assert (cmd[3:6] == self_activating) == (name == 'crowd_system.launch.py')
+        cmd = [c for c in cmd if c not in self_activating]
         assert cmd[:5] == ['sys.executable', "'-m'", "'robmosys_runtime.container'",
                            'arguments.description', 'arguments.params_file']
         assert cmd[-2:] == ["'--ros-args'", '*arguments.ros_arguments']
         assert [ast.literal_eval(e) for e in cmd[5:-2]] == python
+        if name == 'crowd_system.launch.py':
+            [manager] = _calls(launch, 'Node')
+            assert "arguments=['--attach', '--told-file', arguments.told_file, " \
+                '*arguments.manager]' in ast.unparse(manager)
         [container] = _calls(launch, 'ComposableNodeContainer')
         assert "name='crowd_system_container'" in ast.unparse(container)
         loaded = {ast.literal_eval(next(k.value for k in c.keywords if k.arg == 'name'))

@@ -65,6 +65,10 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
                         help='start no instance (ros2 launch starts them): only bring the '
                         'system up, serve operators, and on Ctrl-C end without bringing '
                         'it down (the launch ends the instances)')
+    parser.add_argument('--told-file', metavar='FILE',
+                        help='with --attach: the file where the shared process that the '
+                        'launch file starts writes what it brought up (its --report-file); '
+                        'read before the manager makes a DDS participant')
     parser.add_argument('--host', metavar='HOST',
                         help='start only the instances the model puts on this host, and '
                         'leave bringing them up to the manager (bringup without --host)')
@@ -150,13 +154,16 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
         if pipe:
             os.close(pipe[1])
             told = read_told(pipe[0], args.start_timeout + args.timeout, signalled)
-            managed = [i['instance'] for i in description['instances'] if i['managed']]
-            if told is not None and all(told.get(n) == 'active' for n in managed):
-                # every managed instance is up: said before this process makes
-                # a DDS participant, which the instances would have discovered
-                # while they were being made (issue 28)
-                print(report(Outcome(active=managed), len(managed)), flush=True)
-                printed = True
+    elif args.told_file and tells_all(description, args.processes):
+        # the launch file started the shared process, which writes the file
+        told = read_told_file(args.told_file, args.start_timeout + args.timeout, signalled)
+    managed = [i['instance'] for i in description['instances'] if i['managed']]
+    if told is not None and all(told.get(n) == 'active' for n in managed):
+        # every managed instance is up: said before this process makes a DDS
+        # participant, which the instances would have discovered while they
+        # were being made (issue 28)
+        print(report(Outcome(active=managed), len(managed)), flush=True)
+        printed = True
 
     import rclpy
     from rclpy.executors import MultiThreadedExecutor
@@ -284,6 +291,40 @@ def read_told(reading: int, timeout: float,
                 break
     finally:
         os.close(reading)
+    return told_states(data)
+
+
+def read_told_file(path: str, timeout: float,
+                   signalled: threading.Event) -> Optional[Dict[str, str]]:
+    """
+    Return the states the shared process wrote to a file (``container --report-file``).
+
+    None if it wrote none: its process ended first (the pid it wrote to
+    ``<file>.started`` is gone), or it did not write within timeout seconds,
+    or a signal came.
+    """
+    deadline = time.monotonic() + timeout
+    while not signalled.is_set() and time.monotonic() < deadline:
+        try:
+            with open(path, 'rb') as stream:
+                return told_states(stream.read())
+        except FileNotFoundError:
+            pass
+        try:
+            with open(f'{path}.started', encoding='utf-8') as stream:
+                os.kill(int(stream.read()), 0)
+        except (FileNotFoundError, ValueError, PermissionError):
+            pass  # not started yet, or being written; or another user's process
+        except ProcessLookupError:
+            # it ended before it wrote (a process started again writes anew)
+            if not os.path.exists(path):
+                return None
+        signalled.wait(0.02)
+    return None
+
+
+def told_states(data: bytes) -> Optional[Dict[str, str]]:
+    """Return the states of a line of JSON the shared process wrote, None if it is not one."""
     try:
         states = json.loads(data)
     except ValueError:

@@ -3,8 +3,8 @@
 """
 Several Python instances of a system in one process (``processes: shared``).
 
-``python -m robmosys_runtime.container [--activate [--report-fd FD]] DESCRIPTION PARAMS_FILE
-INSTANCE... [--ros-args ...]``
+``python -m robmosys_runtime.container [--activate [--report-fd FD | --report-file FILE]]
+DESCRIPTION PARAMS_FILE INSTANCE... [--ros-args ...]``
 creates the node of each instance from its component's class, with the name,
 namespace, remappings and parameter file the launch files would give it, and
 spins them all on one executor (:func:`run_nodes`): the one the system names for
@@ -19,7 +19,9 @@ the model's order, through rclpy's own transitions, before it serves any
 request, and tells the manager, in one message, which it brought to which
 state (:mod:`robmosys_runtime.reports`), and with ``--report-fd`` also on
 that file descriptor, one line of JSON (``bringup`` reads it from a pipe
-before it makes a DDS participant of its own): the manager does not take each
+before it makes a DDS participant of its own), or with ``--report-file`` in
+that file (``<system>.launch.py`` gives the same file to the manager, and
+``<file>.started`` holds the process's pid): the manager does not take each
 through two transitions of the lifecycle services, nor asks each its state
 (each call waiting for the service of another process to be discovered was
 what the manager added to the floor, issue 28). An instance that fails a
@@ -80,14 +82,14 @@ def activate_in_order(instances: List[Dict[str, Any]], nodes: List[Node],
 
 
 def bring_up(instances: List[Dict[str, Any]], nodes: List[Node], reporter: Reporter,
-             report_fd: Optional[int] = None) -> None:
+             report_fd: Optional[int] = None, report_file: Optional[str] = None) -> None:
     """
     Activate what can be (:func:`activate_in_order`); tell the manager the states known.
 
     Those activated are active, those not touched unconfigured; one that
     failed a transition is left out: the manager asks it its state. The
     states are published, and written to ``report_fd`` if given, which is
-    then closed.
+    then closed, and to ``report_file`` if given (whole, or not at all).
     """
     untouched: List[str] = []
     active = activate_in_order(instances, nodes, untouched)
@@ -99,6 +101,20 @@ def bring_up(instances: List[Dict[str, Any]], nodes: List[Node], reporter: Repor
                 stream.write(json.dumps(states) + '\n')
         except OSError:
             pass  # bringup stopped reading: it asks the instances
+    if report_file is not None:
+        write_whole(report_file, json.dumps(states) + '\n')
+
+
+def write_whole(path: str, text: str) -> None:
+    """Write a file that its reader finds whole or not at all (a temporary file renamed)."""
+    temporary = f'{path}.{os.getpid()}.tmp'
+    try:
+        with open(temporary, 'w', encoding='utf-8') as stream:
+            stream.write(text)
+        os.replace(temporary, path)
+    except OSError as error:
+        # the manager asks the instances instead
+        print(f'container: error: {path}: {error.strerror}', file=sys.stderr)
 
 
 def main(argv: Optional[List[str]] = None) -> int:
@@ -110,12 +126,18 @@ def main(argv: Optional[List[str]] = None) -> int:
     activate = args[:1] == ['--activate']
     args = args[1:] if activate else args
     report_fd: Optional[int] = None
+    report_file: Optional[str] = None
     if activate and args[:1] == ['--report-fd'] and len(args) > 1 and args[1].isdigit():
         report_fd = int(args[1])
         args = args[2:]
+    elif activate and args[:1] == ['--report-file'] and len(args) > 1:
+        report_file = args[1]
+        args = args[2:]
+        # the manager waits for the file only while this process lives
+        write_whole(f'{report_file}.started', str(os.getpid()))
     if len(args) < 2:
-        print('container: error: usage: container [--activate [--report-fd FD]] DESCRIPTION '
-              'PARAMS_FILE INSTANCE...', file=sys.stderr)
+        print('container: error: usage: container [--activate [--report-fd FD | --report-file '
+              'FILE]] DESCRIPTION PARAMS_FILE INSTANCE...', file=sys.stderr)
         return 2
     description_file, params_file, *names = args
     with open(description_file, encoding='utf-8') as stream:
@@ -131,7 +153,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     return run_nodes([node_factory(i, params_file) for i in chosen],
                      executor_name=description.get('executors', {}).get('python'),
                      args=['container', *ros_arguments] if ros_arguments else None,
-                     before_spin=(lambda nodes: bring_up(chosen, nodes, reporter, report_fd))
+                     before_spin=(lambda nodes: bring_up(chosen, nodes, reporter, report_fd,
+                                                         report_file))
                      if activate else None,
                      unspun=[reporter.make] if activate else ())
 

@@ -14,8 +14,11 @@ imported here only, by launch files.
 
 from __future__ import annotations
 
+import atexit
 import json
 import os
+import shutil
+import tempfile
 from typing import Any, Dict, List, Optional, Text, Tuple
 
 from ament_index_python.packages import get_package_share_directory
@@ -139,6 +142,22 @@ class SystemArguments:
         #: the system manager's options of the same meaning, one argument each
         self.manager: List[Any] = [[f"--{name.replace('_', '-')}=", LaunchConfiguration(name)]
                                    for name in ARGUMENTS]
+        self._told_file: Optional[str] = None
+
+    @property
+    def told_file(self) -> str:
+        """
+        Return where the shared process writes what it brought up, for the manager.
+
+        A file in a folder of this launch's own, removed when the launch ends:
+        the manager reads it before it makes a DDS participant (``bringup
+        --told-file``, ``container --report-file``).
+        """
+        if self._told_file is None:
+            folder = tempfile.mkdtemp(prefix=f'robmosys_{self.package}_')
+            atexit.register(shutil.rmtree, folder, True)
+            self._told_file = os.path.join(folder, 'brought_up.json')
+        return self._told_file
 
     @staticmethod
     def moved(name: str) -> Moved:

@@ -4,13 +4,15 @@
 
 import json
 import os
+import subprocess
+import sys
 import threading
 import time
 
 from rclpy.lifecycle import Node as LifecycleNode
 from rclpy.lifecycle import TransitionCallbackReturn
 from robmosys_runtime.activation import SystemActivation
-from robmosys_runtime.bringup import read_told, tells_all
+from robmosys_runtime.bringup import read_told, read_told_file, tells_all
 from robmosys_runtime.container import bring_up
 from robmosys_runtime.reports import Reporter, reporter_name, Reports
 
@@ -171,3 +173,40 @@ def test_bringup_reads_the_pipe_only_where_the_shared_process_brings_up_every_ma
     assert not tells_all(system({'instance': 'a'}, {'instance': 'b', 'command': ['x']}), None)
     # nothing managed: nothing to tell
     assert not tells_all(system({'instance': 'a', 'managed': False}), None)
+
+
+def test_the_states_go_to_the_file_of_the_launch_too(spinning, tmp_path):
+    instances = [{'instance': 'first', 'managed': True}]
+    nodes, reporter = _process(spinning, instances)
+    told = tmp_path / 'brought_up.json'
+    bring_up(instances, nodes, reporter, report_file=str(told))
+    assert read_told_file(str(told), 5.0, threading.Event()) == {'first': 'active'}
+    # written whole: no temporary file is left beside it
+    assert sorted(p.name for p in tmp_path.iterdir()) == ['brought_up.json']
+
+
+def test_the_file_is_waited_for_while_its_process_lives(tmp_path):
+    told = tmp_path / 'brought_up.json'
+    # a process that started and ended without writing it: not waited for
+    ended = subprocess.run([sys.executable, '-c', 'import os; print(os.getpid())'],
+                           capture_output=True, text=True, check=True)
+    (tmp_path / 'brought_up.json.started').write_text(ended.stdout.strip())
+    start = time.monotonic()
+    assert read_told_file(str(told), 30.0, threading.Event()) is None
+    assert time.monotonic() - start < 3
+    # one that lives writes it later: read once whole
+    (tmp_path / 'brought_up.json.started').write_text(str(os.getpid()))
+    threading.Timer(0.5, lambda: told.write_text('{"first": "active"}\n')).start()
+    start = time.monotonic()
+    assert read_told_file(str(told), 30.0, threading.Event()) == {'first': 'active'}
+    assert 0.3 < time.monotonic() - start < 5
+    # nothing started: waited for until the timeout, or a signal
+    told.unlink()
+    (tmp_path / 'brought_up.json.started').unlink()
+    start = time.monotonic()
+    assert read_told_file(str(told), 0.5, threading.Event()) is None
+    assert 0.4 < time.monotonic() - start < 3
+    signalled = threading.Event()
+    threading.Timer(0.3, signalled.set).start()
+    assert read_told_file(str(told), 30.0, signalled) is None
+    assert time.monotonic() - start < 5
