@@ -20,11 +20,9 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import select
 import signal
 import sys
 import threading
-import time
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from ament_index_python.packages import get_package_share_directory
@@ -34,8 +32,8 @@ from robmosys_runtime.arguments import (
 from robmosys_runtime.levels import Outcome, report
 from robmosys_runtime.locations import resolve_locations
 from robmosys_runtime.output import say
-from robmosys_runtime.processes import (
-    CPP_GROUP, NotInstalled, plan_processes, Processes, shared_python)
+from robmosys_runtime.processes import CPP_GROUP, NotInstalled, plan_processes, Processes
+from robmosys_runtime.told import read_told, read_told_file, tells_all
 
 # rclpy is imported once the instances are starting: they start it too, in
 # parallel (see main)
@@ -255,81 +253,6 @@ def not_installed(error: NotInstalled) -> int:
     for problem in error.problems:
         say('error', f'{problem}; nothing was started')
     return 1
-
-
-def tells_all(description: Dict[str, Any], shared: Optional[bool]) -> bool:
-    """
-    Tell whether the shared process of this host brings up every managed instance.
-
-    It then tells ``bringup`` what it brought up through a pipe, and bringup
-    needs no DDS participant of its own to report the bring-up.
-    """
-    managed = {i['instance'] for i in description['instances'] if i['managed']}
-    return bool(managed) and managed <= set(shared_python(description, '', shared))
-
-
-def read_told(reading: int, timeout: float,
-              signalled: threading.Event) -> Optional[Dict[str, str]]:
-    """
-    Return the states the shared process wrote to a pipe, and close it.
-
-    None if it wrote none: it ended first, or did not write within timeout
-    seconds, or a signal came (the manager then learns them as from a launch).
-    """
-    deadline = time.monotonic() + timeout
-    data = b''
-    try:
-        while not signalled.is_set() and time.monotonic() < deadline:
-            ready, _, _ = select.select([reading], [], [], 0.05)
-            if not ready:
-                continue
-            chunk = os.read(reading, 65536)
-            if not chunk:
-                break
-            data += chunk
-            if data.endswith(b'\n'):
-                break
-    finally:
-        os.close(reading)
-    return told_states(data)
-
-
-def read_told_file(path: str, timeout: float,
-                   signalled: threading.Event) -> Optional[Dict[str, str]]:
-    """
-    Return the states the shared process wrote to a file (``container --report-file``).
-
-    None if it wrote none: its process ended first (the pid it wrote to
-    ``<file>.started`` is gone), or it did not write within timeout seconds,
-    or a signal came.
-    """
-    deadline = time.monotonic() + timeout
-    while not signalled.is_set() and time.monotonic() < deadline:
-        try:
-            with open(path, 'rb') as stream:
-                return told_states(stream.read())
-        except FileNotFoundError:
-            pass
-        try:
-            with open(f'{path}.started', encoding='utf-8') as stream:
-                os.kill(int(stream.read()), 0)
-        except (FileNotFoundError, ValueError, PermissionError):
-            pass  # not started yet, or being written; or another user's process
-        except ProcessLookupError:
-            # it ended before it wrote (a process started again writes anew)
-            if not os.path.exists(path):
-                return None
-        signalled.wait(0.02)
-    return None
-
-
-def told_states(data: bytes) -> Optional[Dict[str, str]]:
-    """Return the states of a line of JSON the shared process wrote, None if it is not one."""
-    try:
-        states = json.loads(data)
-    except ValueError:
-        return None
-    return {str(k): str(v) for k, v in states.items()} if isinstance(states, dict) else None
 
 
 def check(description: Dict[str, Any], args: argparse.Namespace) -> int:

@@ -12,9 +12,9 @@ import time
 from rclpy.lifecycle import Node as LifecycleNode
 from rclpy.lifecycle import TransitionCallbackReturn
 from robmosys_runtime.activation import SystemActivation
-from robmosys_runtime.bringup import read_told, read_told_file, tells_all
 from robmosys_runtime.container import bring_up
 from robmosys_runtime.reports import Reporter, reporter_name, Reports
+from robmosys_runtime.told import read_told, read_told_file, tells_all
 
 DESCRIPTION = {'package': 'tidy_system', 'namespace': '/robot1'}
 
