@@ -95,14 +95,15 @@ def bring_up(instances: List[Dict[str, Any]], nodes: List[Node], reporter: Repor
     active = activate_in_order(instances, nodes, untouched)
     states = {**dict.fromkeys(untouched, 'unconfigured'), **dict.fromkeys(active, 'active')}
     reporter.brought_up(states)
+    line = json.dumps(states) + '\n'
     if report_fd is not None:
         try:
             with os.fdopen(report_fd, 'w', encoding='utf-8') as stream:
-                stream.write(json.dumps(states) + '\n')
+                stream.write(line)
         except OSError:
             pass  # bringup stopped reading: it asks the instances
     if report_file is not None:
-        write_whole(report_file, json.dumps(states) + '\n')
+        write_whole(report_file, line)
 
 
 def write_whole(path: str, text: str) -> None:
