@@ -141,3 +141,16 @@ def mtimes(root: Path, *bases: str) -> dict[str, int]:
 def domain_id() -> int:
     """Return a ROS_DOMAIN_ID of this test's own."""
     return ros_env.free_domain_id()
+
+
+def assert_no_traceback(output: str, everything: str = '') -> None:
+    """
+    Fail when output holds a Python traceback; the message starts with each one.
+
+    What CI shows of a failure is its first lines: a traceback at the end of
+    a long output, as the whole output is, never reached the log.
+    """
+    lines = output.splitlines()
+    found = [i for i, line in enumerate(lines) if 'Traceback (most recent call last)' in line]
+    excerpts = ['\n'.join(lines[i:i + 40]) for i in found]
+    assert not found, '\n...\n'.join(excerpts) + f'\n--- the whole output:\n{everything or output}'

@@ -25,7 +25,7 @@ from colcon_robmosys.devtools import ros_env
 from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
 from colcon_robmosys.mapping.backends.cpp.spelling import CPP_CLIENT_PACKAGES
 from colcon_robmosys.package_selection.robmosys import missing_prefix_packages
-from conftest import requires_ros
+from conftest import assert_no_traceback, requires_ros
 from harness.launch_files import activate_launch_file, nodes_launch_file, read_launch_file
 
 pytestmark = [pytest.mark.integration, requires_ros]
@@ -411,7 +411,7 @@ def test_a_shared_system_runs_its_cpp_instances_in_one_container(
                     b'__node:=cpp_pub' in _cmdline(p)]
         bringup.proc.send_signal(signal.SIGINT)
         assert bringup.proc.wait(timeout=60) == 0, bringup.output()
-        assert 'Traceback' not in bringup.output(), bringup.output()
+        assert_no_traceback(bringup.output())
 
 
 def _cmdline(proc: Path) -> bytes:

@@ -21,7 +21,7 @@ import pytest
 
 from colcon_robmosys.devtools.ros_env import Background, background, free_domain_id
 from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
-from conftest import BuiltWorkspace, requires_ros
+from conftest import assert_no_traceback, BuiltWorkspace, requires_ros
 from harness.launch_files import NodeLaunch, nodes_launch_file, read_launch_file
 
 pytestmark = [pytest.mark.integration, requires_ros]
@@ -78,7 +78,7 @@ def examples(test_workspace_built) -> Iterator[Running]:
             assert driver.transition(nodes[name].fqn, 'activate'), running.output(name)
         yield running
         for name in ACTIVATION_ORDER:
-            assert 'Traceback' not in running.output(name), running.output(name)
+            assert_no_traceback(running.output(name))
 
 
 def test_send_texts_arrive(examples):
@@ -283,4 +283,4 @@ def test_lifecycle_of_a_sender_and_a_receiver(test_workspace_built):
                 wait_until(lambda: process.proc.poll() is not None, 5)
                 pytest.fail(f'{signal_.name} did not end the node:\n{process.output()}')
             assert process.proc.returncode == 0, process.output()
-            assert 'Traceback' not in process.output()[before:], process.output()
+            assert_no_traceback(process.output()[before:], process.output())

@@ -24,7 +24,7 @@ from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
 from colcon_robmosys.mapping.executors import component_executor, shared_executor
 from colcon_robmosys.mapping.system import ACTION_PARTS
 from colcon_robmosys.model.types import Executor
-from conftest import build_workspace, BuiltWorkspace, requires_ros
+from conftest import assert_no_traceback, build_workspace, BuiltWorkspace, requires_ros
 
 EXECUTORS = ('events', 'single-threaded', 'multi-threaded')
 METADATA = {'license': 'Apache-2.0', 'maintainers': [{'name': 'A', 'email': 'a@example.com'}]}
@@ -246,7 +246,7 @@ def test_every_pattern_works_on_the_executor(built, domain_id, executor):
         for role in ('client', 'server'):
             assert change(role, 'deactivate'), output()
         for process in processes.values():
-            assert 'Traceback' not in process.output(), output()
+            assert_no_traceback(process.output(), output())
 
 
 @pytest.mark.integration
@@ -258,4 +258,4 @@ def test_a_shared_process_runs_on_the_executor_the_system_names(built, domain_id
     with background(bringup, env=built.env(domain_id)) as process:
         assert wait_until(lambda: all(_worked(process.output()).values()), 90), \
             process.output()
-        assert 'Traceback' not in process.output(), process.output()
+        assert_no_traceback(process.output())

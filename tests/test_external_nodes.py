@@ -21,7 +21,7 @@ import pytest
 
 from colcon_robmosys.devtools.ros_env import background, free_domain_id
 from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
-from conftest import requires_ros
+from conftest import assert_no_traceback, requires_ros
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
@@ -67,4 +67,4 @@ def test_hand_written_nodes_come_up_with_a_generated_one_and_data_flows(test_wor
     assert steps.index(('cleanup', 'listener')) < steps.index(('deactivate', 'relay')), output
     assert sorted(steps) == sorted((step, name) for name in ('listener', 'relay', 'echo')
                                    for step in ('deactivate', 'cleanup')), output
-    assert 'Traceback' not in output, output
+    assert_no_traceback(output)

@@ -16,7 +16,7 @@ import pytest
 
 from colcon_robmosys.devtools.ros_env import background
 from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
-from conftest import requires_ros
+from conftest import assert_no_traceback, requires_ros
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
@@ -55,4 +55,4 @@ def test_events_of_a_hand_written_server_reach_a_generated_component(
         assert 'never activation: 0 event(s), ended: False' in watcher.output()
         assert driver.transition('/watcher', 'deactivate'), watcher.output()
         for process in (sensor, watcher):
-            assert 'Traceback' not in process.output(), process.output()
+            assert_no_traceback(process.output())

@@ -30,7 +30,7 @@ from test_cpp_system import requires_rclcpp
 
 from colcon_robmosys.devtools.ros_env import Background, free_domain_id
 from colcon_robmosys.devtools.system import wait_until
-from conftest import BuiltWorkspace, requires_ros
+from conftest import assert_no_traceback, BuiltWorkspace, requires_ros
 from harness import netns
 
 pytestmark = [pytest.mark.integration, requires_ros]
@@ -164,7 +164,7 @@ def test_with_multicast_the_smoke_test_and_the_watch_pass_across_hosts(
         assert _crossed(system.hosts['robot2'].output()) == [], system.output()
         for robot in robots:
             assert _stopped_on_sigint(robot) == 0, system.output()
-        assert 'Traceback' not in system.output(), system.output()
+        assert_no_traceback(system.output())
 
 
 #: mixed_system on two robots: robot1 runs every C++ instance in its component
@@ -206,7 +206,7 @@ def test_a_cpp_container_on_a_robot_is_brought_up_and_down_by_the_manager_on_bas
             assert _stopped_on_sigint(robot) == 0, system.output()
         # the container ended with its robot's bringup
         assert wait_until(lambda: not network.pids('robot1'), 30), system.output()
-        assert 'Traceback' not in system.output(), system.output()
+        assert_no_traceback(system.output())
 
 
 def _cmdline(pid: int) -> bytes:
@@ -356,4 +356,4 @@ def test_ctrl_c_on_the_manager_brings_every_host_down_and_each_host_exits_0(syst
     assert set(states.values()) == {'unconfigured'}, states
     for robot in system.hosts.values():
         assert _stopped_on_sigint(robot) == 0, system.output()
-    assert 'Traceback' not in system.output(), system.output()
+    assert_no_traceback(system.output())

@@ -21,7 +21,7 @@ import pytest
 
 from colcon_robmosys.devtools.ros_env import Background, background, free_domain_id
 from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
-from conftest import BuiltWorkspace, requires_ros
+from conftest import assert_no_traceback, BuiltWorkspace, requires_ros
 from harness.launch_files import nodes_launch_file, read_launch_file
 
 pytestmark = [pytest.mark.integration, requires_ros]
@@ -125,4 +125,4 @@ def test_a_second_signal_ends_the_node_promptly_and_quietly(test_workspace_built
         started = time.monotonic()
         node.proc.wait(timeout=10)
         assert time.monotonic() - started < 5
-        assert 'Traceback' not in node.output(), node.output()
+        assert_no_traceback(node.output())

@@ -24,7 +24,7 @@ from colcon_robmosys.check import find_model_files, load_workspace
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.generators import generate_package
 from colcon_robmosys.generators import plan_package
-from colcon_robmosys.mapping.system import plan_system
+from colcon_robmosys.mapping.system import json_lines, plan_system
 from colcon_robmosys.model.parameters import node_parameters
 from colcon_robmosys.model.types import (
     Component, Instance, Pattern, PortRef, Role, System, Workspace)
@@ -456,6 +456,24 @@ def test_the_description_holds_what_the_conformance_watch_compares(tmp_path):
          'from': 'echo.rIn', 'to': '', 'location': at('{to: echo.rIn', 9)},
         {'name': '/outside/echoes', 'entity': 'publisher', 'type': 'std_msgs/msg/String',
          'from': 'echo.pOut', 'to': '', 'location': at('{from: echo.pOut', 9)}]
+
+
+def test_the_description_is_json_with_an_instance_per_line():
+    workspace = _load(TEST_WORKSPACE / 'src')
+    plan = plan_system(_system('dummy_robot_bringup'), workspace)
+    text = plan.bringup_description
+    description = json.loads(text)
+    # what json's own indented form holds, each instance and connection on a line
+    assert json.loads(json.dumps(description, indent=2)) == description
+    lines = text.splitlines()
+    for key in ('instances', 'connections'):
+        assert len(description[key]) > 1
+        for item in description[key]:
+            line = json.dumps(item, sort_keys=True)
+            assert f'    {line},' in lines or f'    {line}' in lines
+    weird = {'b': [], 'a': ['x\n"y"', {'z': 1, 'k': [1, 2]}], 'c': {'\u00e9': None}}
+    assert json.loads(json_lines(weird)) == weird
+    assert json_lines(weird).startswith('{\n  "a": [\n    "x\\n\\"y\\"",\n')
 
 
 def test_the_description_holds_the_values_and_periods_of_the_model():

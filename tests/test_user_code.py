@@ -14,7 +14,7 @@ import pytest
 
 from colcon_robmosys.devtools.ros_env import background, loopback_env, workspace_env
 from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
-from conftest import colcon, requires_ros
+from conftest import assert_no_traceback, colcon, requires_ros
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
@@ -96,7 +96,7 @@ def test_user_code_survives_and_the_skeleton_follows_the_model(tmp_path, domain_
     assert f"{impl}:{line}:1: error: class 'Echo_impl' lacks the function 'fCount' of the " \
         'model; the skeleton src-skel/echo/Echo_impl_skel.py of the package shows what the ' \
         f'model asks for: {skeleton}' in output, output
-    assert 'Traceback' not in output
+    assert_no_traceback(output)
     assert impl.read_bytes() == mine
     text = skeleton.read_text()
     assert 'def fCount(self) -> None:' in text and 'Count the ticks.' in text

@@ -135,11 +135,28 @@ class SystemPackage:
                         'from': c.source, 'to': c.target,
                         'location': installed_location(c.location, installed)}
                        for c in self.connections]
-        return json.dumps({'generated_by': ' '.join(self.banner.lines),
+        return json_lines({'generated_by': ' '.join(self.banner.lines),
                            'package': self.package, 'params_file': PARAMS_FILE,
                            'processes': self.processes, 'executors': dict(self.executors),
-                           'instances': instances, 'connections': connections},
-                          indent=2, sort_keys=True) + '\n'
+                           'instances': instances, 'connections': connections})
+
+
+def json_lines(description: dict[str, Any]) -> str:
+    """Return a dict as JSON, its keys sorted, each element of a list on a line of its own.
+
+    Readable, an instance per line, and written by json's C encoder:
+    ``indent=`` takes its pure-Python one, six times slower (0.82 s against 0.14 s
+    for the 100 systems of 1000 synthetic components, bench/generation_cli.py).
+    """
+    lines = []
+    for key in sorted(description):
+        value = description[key]
+        if isinstance(value, list) and value:
+            items = ',\n'.join(f'    {json.dumps(item, sort_keys=True)}' for item in value)
+            lines.append(f'  {json.dumps(key)}: [\n{items}\n  ]')
+        else:
+            lines.append(f'  {json.dumps(key)}: {json.dumps(value, sort_keys=True)}')
+    return '{\n' + ',\n'.join(lines) + '\n}\n'
 
 
 def activation_order(system: System) -> list[Instance]:

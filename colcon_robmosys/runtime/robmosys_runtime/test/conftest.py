@@ -8,6 +8,7 @@ import time
 import pytest
 import rclpy
 from rclpy.executors import MultiThreadedExecutor
+from robmosys_runtime.main import spin
 
 
 class Spinning:
@@ -17,14 +18,21 @@ class Spinning:
         self.context = context
         self.executor = MultiThreadedExecutor(num_threads=4, context=context)
         self.nodes = []
+        #: what ended the spinning before the context did, raised by close()
+        self.error = None
         self._thread = threading.Thread(target=self._spin, daemon=True)
         self._thread.start()
 
     def _spin(self) -> None:
+        # as the generated processes spin: a test's transition destroys a
+        # node's timers in the test's thread while the executor may gather
+        # them (ros2/rclpy#1142), which a plain spin() did not survive: the
+        # thread ended and no timer fired again
         try:
-            self.executor.spin()
-        except Exception:  # noqa: B902 - ends with the context
-            pass
+            spin(self.executor)
+        except Exception as error:  # noqa: B902 - raised by close() unless the context ended
+            if self.context.ok():
+                self.error = error
 
     def add(self, node):
         """Spin a node; return it."""
@@ -38,6 +46,8 @@ class Spinning:
             node.destroy_node()
         rclpy.try_shutdown(context=self.context)
         self._thread.join(10)
+        if self.error is not None:
+            raise self.error
 
 
 def wait_until(condition, timeout: float = 10.0) -> bool:
