@@ -22,18 +22,34 @@ A :class:`Durable` keeps the writes of a run and does them at
    made meanwhile is never replaced); then the files no longer generated are
    removed;
 3. one last flush, for the renames and removals.
+
+A package folder that does not exist yet (a first generation) is written
+whole into a hidden folder beside it with no temporary file per file, flushed
+with the others in step 2, and renamed into place at once: it appears with
+its manifest and every file, or not at all, as ``cp -r`` would write it plus
+one rename. A run killed before that rename leaves the hidden folder, which
+the next run that writes beside it removes.
 """
 
 from __future__ import annotations
 
 import ctypes
 from dataclasses import dataclass, field
+import errno
+import itertools
 import os
 from pathlib import Path
+import shutil
 from typing import Callable, Iterable
 
 from colcon_robmosys.generators.writer import (
     remove_generated, remove_user_leftovers, write_temp)
+
+#: How the hidden folder a new package is written into ends.
+NEW_SUFFIX = '.robmosys-new'
+
+#: Numbers the hidden folders of this process.
+_counter = itertools.count()
 
 
 @dataclass
@@ -48,11 +64,22 @@ class _Write:
 
 
 @dataclass
+class _Package:
+    """A package folder written whole, renamed into place once written."""
+
+    root: Path
+    #: path relative to root -> content, and whether it is executable
+    files: dict[str, tuple[bytes, bool]]
+    staging: Path | None = None
+
+
+@dataclass
 class Durable:
     """The writes of a run, done and made durable together by :meth:`commit`."""
 
     _manifests: list[_Write] = field(default_factory=list)
     _files: list[_Write] = field(default_factory=list)
+    _packages: list[_Package] = field(default_factory=list)
     #: (file, the folder of its package): removed after the writes
     _removals: list[tuple[Path, Path]] = field(default_factory=list)
     #: what to do once everything is in place (record a stamp)
@@ -65,6 +92,10 @@ class Durable:
     def replace(self, path: Path, data: bytes, executable: bool = False) -> None:
         """Write a generated file (checked to be ours by the caller)."""
         self._files.append(_Write(path, data, executable))
+
+    def new_package(self, root: Path, files: dict[str, tuple[bytes, bool]]) -> None:
+        """Write a package folder that does not exist yet, its manifest among its files."""
+        self._packages.append(_Package(root, files))
 
     def create(self, path: Path, data: bytes) -> None:
         """Create a file of the user's, unless one is there by then."""
@@ -91,7 +122,13 @@ class Durable:
                 for write in group:
                     write.temp = write_temp(write.path, write.data, write.executable,
                                             sync=False)
-                flush_file_systems(w.path for w in group)
+                flushed = [w.path for w in group]
+                if group is self._files:
+                    _remove_stale_stagings({p.root.parent for p in self._packages})
+                    for package in self._packages:
+                        package.staging = _stage(package)
+                        flushed.append(package.staging)
+                flush_file_systems(flushed)
                 for write in group:
                     temp, write.temp = write.temp, None
                     assert temp is not None
@@ -106,10 +143,15 @@ class Durable:
                         pass
                     finally:
                         os.unlink(temp)
+            for package in self._packages:
+                staging, package.staging = package.staging, None
+                assert staging is not None
+                _move_in(staging, package.root)
             for path, root in self._removals:
                 remove_generated(path, root)
             flush_file_systems([w.path for w in self._manifests + self._files] +
-                               [path for path, _ in self._removals])
+                               [path for path, _ in self._removals] +
+                               [p.root for p in self._packages])
         finally:
             # a failure leaves no temporary file of ours (a kill leaves them to
             # the next generation's remove_leftovers)
@@ -117,11 +159,86 @@ class Durable:
                 if write.temp is not None:
                     os.unlink(write.temp)
                     write.temp = None
+            for package in self._packages:
+                if package.staging is not None:
+                    shutil.rmtree(package.staging, ignore_errors=True)
+                    package.staging = None
             self._manifests, self._files, self._removals = [], [], []
+            self._packages = []
         then, self._then = self._then, []
         for action in then:
             action()
         return created
+
+
+def _stage(package: _Package) -> Path:
+    """Write a new package's files into a hidden folder beside it; return the folder."""
+    package.root.parent.mkdir(parents=True, exist_ok=True)
+    staging = package.root.parent / \
+        f'.{package.root.name}.{os.getpid()}-{next(_counter)}{NEW_SUFFIX}'
+    os.mkdir(staging)
+    made = {staging}
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, 'O_CLOEXEC', 0)
+    for relative, (data, executable) in package.files.items():
+        path = staging / relative
+        if path.parent not in made:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            made.add(path.parent)
+        # created with its final mode (the umask applies): no chmod follows
+        with os.fdopen(os.open(path, flags, 0o777 if executable else 0o666), 'wb') as stream:
+            stream.write(data)
+    return staging
+
+
+def _move_in(staging: Path, root: Path) -> None:
+    """Rename a package's hidden folder into place, or link its files where one appeared.
+
+    A folder made at root since the run looked (by the user, or by another
+    run) keeps every file it has: only the files it lacks are linked in.
+    """
+    try:
+        os.rename(staging, root)  # over nothing, or over an empty folder
+        return
+    except OSError as error:
+        if error.errno not in (errno.EEXIST, errno.ENOTEMPTY):
+            raise
+    for path in sorted(staging.rglob('*')):
+        if path.is_dir():
+            continue
+        target = root / path.relative_to(staging)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        try:
+            os.link(path, target)  # never over a file that is there
+        except FileExistsError:
+            pass
+    shutil.rmtree(staging)
+
+
+def _remove_stale_stagings(folders: Iterable[Path]) -> None:
+    """Remove the hidden folders that runs no longer running left in these folders."""
+    for folder in folders:
+        try:
+            entries = list(os.scandir(folder))
+        except (FileNotFoundError, NotADirectoryError):
+            continue
+        for entry in entries:
+            if entry.name.startswith('.') and entry.name.endswith(NEW_SUFFIX) and \
+                    entry.is_dir(follow_symlinks=False) and not _running(entry.name):
+                shutil.rmtree(entry.path, ignore_errors=True)
+
+
+def _running(staging_name: str) -> bool:
+    """Say whether the process that named a hidden folder still runs."""
+    number = staging_name[:-len(NEW_SUFFIX)].rsplit('.', 1)[-1].split('-')[0]
+    if not number.isdigit():
+        return False
+    try:
+        os.kill(int(number), 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        pass  # another user's
+    return True
 
 
 def _syncfs() -> Callable[[int], int] | None:

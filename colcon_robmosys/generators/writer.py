@@ -311,6 +311,12 @@ def write_outputs(outputs: dict[str, tuple[bytes, bool]], out_dir: Path,
             continue
         pending[relative] = previous[relative]
         stale.append(path)
+    if fresh and durable is not None:
+        # written whole beside it, then renamed into place
+        durable.new_package(out_dir, {MANIFEST: (manifest_bytes(pending), False), **{
+            relative: outputs[relative] for relative in pending}})
+        report.written += [path for path, *_ in changes]
+        return report
     if pending != previous:
         if durable is None:
             write_generated(manifest_path, manifest_bytes(pending), owned=True)
