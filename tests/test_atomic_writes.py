@@ -272,10 +272,15 @@ def test_a_package_folder_made_meanwhile_keeps_its_files(tmp_path):
     durable = Durable()
     durable.new_package(root, {'CMakeLists.txt': (b'generated\n', False),
                                'scripts/run': (b'#!/bin/sh\n', True)})
+    done = []
+    durable.then(lambda: done.append('pkg'), root)
+    durable.then(lambda: done.append('run'))
     # the user made the folder, with a file of theirs, after the run looked
     (root / 'scripts').mkdir(parents=True)
     (root / 'CMakeLists.txt').write_bytes(b'mine\n')
     durable.commit()
+    # the package was not placed whole: no stamp of it, the next run looks at every file
+    assert done == ['run']
     assert (root / 'CMakeLists.txt').read_bytes() == b'mine\n'
     assert (root / 'scripts' / 'run').read_bytes() == b'#!/bin/sh\n'
     assert os.access(root / 'scripts' / 'run', os.X_OK)

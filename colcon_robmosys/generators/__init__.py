@@ -177,7 +177,7 @@ def generate_package(package: PackageFiles, out_dir: Path, *,
     if durable is None:
         record()
     else:
-        durable.then(record)
+        durable.then(record, out_dir)
     return report
 
 

@@ -82,8 +82,9 @@ class Durable:
     _packages: list[_Package] = field(default_factory=list)
     #: (file, the folder of its package): removed after the writes
     _removals: list[tuple[Path, Path]] = field(default_factory=list)
-    #: what to do once everything is in place (record a stamp)
-    _then: list[Callable[[], None]] = field(default_factory=list)
+    #: what to do once everything is in place (record a stamp), and the package
+    #: folder it is about (None: the whole run)
+    _then: list[tuple[Callable[[], None], Path | None]] = field(default_factory=list)
 
     def manifest(self, path: Path, data: bytes) -> None:
         """Write a manifest before any other file."""
@@ -106,9 +107,14 @@ class Durable:
         """Remove a file an earlier generation wrote, after the writes."""
         self._removals.append((path, root))
 
-    def then(self, action: Callable[[], None]) -> None:
-        """Do something once the writes are in place and durable."""
-        self._then.append(action)
+    def then(self, action: Callable[[], None], root: Path | None = None) -> None:
+        """Do something once the writes are in place and durable.
+
+        :param root: the package folder the action is about: a new package whose
+          folder someone else made meanwhile, and whose files were not all placed,
+          skips it (its stamp is not recorded, so the next run looks at every file)
+        """
+        self._then.append((action, root))
 
     def commit(self) -> list[Path]:
         """Write everything, durably; return the files of the user's created.
@@ -117,6 +123,8 @@ class Durable:
         returned.
         """
         created: list[Path] = []
+        #: new packages whose files were not all placed
+        partial: set[Path] = set()
         try:
             for group in (self._manifests, self._files):
                 for write in group:
@@ -146,7 +154,8 @@ class Durable:
             for package in self._packages:
                 staging, package.staging = package.staging, None
                 assert staging is not None
-                _move_in(staging, package.root)
+                if not _move_in(staging, package.root):
+                    partial.add(package.root)
             for path, root in self._removals:
                 remove_generated(path, root)
             flush_file_systems([w.path for w in self._manifests + self._files] +
@@ -166,8 +175,9 @@ class Durable:
             self._manifests, self._files, self._removals = [], [], []
             self._packages = []
         then, self._then = self._then, []
-        for action in then:
-            action()
+        for action, root in then:
+            if root not in partial:
+                action()
         return created
 
 
@@ -190,18 +200,21 @@ def _stage(package: _Package) -> Path:
     return staging
 
 
-def _move_in(staging: Path, root: Path) -> None:
+def _move_in(staging: Path, root: Path) -> bool:
     """Rename a package's hidden folder into place, or link its files where one appeared.
 
     A folder made at root since the run looked (by the user, or by another
     run) keeps every file it has: only the files it lacks are linked in.
+
+    :returns: whether every file of the package is in place
     """
     try:
         os.rename(staging, root)  # over nothing, or over an empty folder
-        return
+        return True
     except OSError as error:
         if error.errno not in (errno.EEXIST, errno.ENOTEMPTY):
             raise
+    whole = True
     for path in sorted(staging.rglob('*')):
         if path.is_dir():
             continue
@@ -210,8 +223,9 @@ def _move_in(staging: Path, root: Path) -> None:
         try:
             os.link(path, target)  # never over a file that is there
         except FileExistsError:
-            pass
+            whole = False
     shutil.rmtree(staging)
+    return whole
 
 
 def _remove_stale_stagings(folders: Iterable[Path]) -> None:
