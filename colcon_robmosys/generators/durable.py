@@ -175,8 +175,8 @@ class Durable:
             self._manifests, self._files, self._removals = [], [], []
             self._packages = []
         then, self._then = self._then, []
-        for action, root in then:
-            if root not in partial:
+        for action, about in then:
+            if about not in partial:
                 action()
         return created
 
