@@ -140,13 +140,21 @@ def measure(components: int, rounds: int, cpp_every: int, timeout: float = 1800)
             times.plain.append(write_plainly(root / 'gen', root / 'plain'))
             times.everything.append(write_files(written_data, root / 'everything', sync=True))
             times.written = len(written)
-            times.files = sum(1 for p in (root / 'gen').rglob('*') if p.is_file())
+            times.files = len(_files_below(root, 'gen'))
             shutil.rmtree(root / 'copy')
             shutil.rmtree(root / 'durable')
             shutil.rmtree(root / 'plain')
             shutil.rmtree(root / 'everything')
         os.sync()
     return times
+
+
+def _median_ratio(step: list[float], *reference: list[float]) -> float:
+    """Return the median over the rounds of step / (the sum of the reference steps).
+
+    Each ratio is taken within its round: its steps met the disk in the same state.
+    """
+    return statistics.median(s / sum(r) for s, *r in zip(step, *reference))
 
 
 def report(components: int, times: CliTimes) -> list[str]:
@@ -158,14 +166,10 @@ def report(components: int, times: CliTimes) -> list[str]:
     def met(value: float, goal: float) -> str:
         return 'met' if value <= goal else 'NOT met'
 
-    # each round's ratio, its steps on the same disk at the same moment
-    no_change = statistics.median(a / b for a, b in zip(times.again, times.listing))
-    first_ratio = statistics.median(
-        f / (a + c) for f, a, c in zip(times.first, times.again, times.copy))
-    durable_ratio = statistics.median(
-        f / (a + c) for f, a, c in zip(times.first, times.again, times.durable_copy))
-    floor_ratio = statistics.median(
-        f / (a + w) for f, a, w in zip(times.first, times.again, times.everything))
+    no_change = _median_ratio(times.again, times.listing)
+    first_ratio = _median_ratio(times.first, times.again, times.copy)
+    durable_ratio = _median_ratio(times.first, times.again, times.durable_copy)
+    floor_ratio = _median_ratio(times.first, times.again, times.everything)
     return [
         f'through the CLI, N={components} ({times.files} files generated; '
         f'{len(times.first)} round(s), each step after a flush of the disk; the goals by the '
