@@ -13,6 +13,7 @@ would start them.
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 from pathlib import Path
 import re
@@ -390,7 +391,8 @@ def test_a_shared_system_runs_its_cpp_instances_in_one_container(
     """With bringup --shared, the C++ instances run in one component container.
 
     The Python ones share one process; parameters of the system's file reach
-    the nodes the container loads.
+    the nodes the container makes. The container is robmosys_runtime's: it
+    brought its instances up itself, and serves rclcpp_components' services.
     """
     from colcon_robmosys.devtools.ros_env import background
     instances = [i.name for i in _model_system().instances]
@@ -407,8 +409,17 @@ def test_a_shared_system_runs_its_cpp_instances_in_one_container(
         containers = [p for p in Path('/proc').iterdir() if p.name.isdigit() and
                       b'__node:=mixed_system_container' in _cmdline(p)]
         assert len(containers) == 1, containers
-        assert not [p for p in Path('/proc').iterdir() if p.name.isdigit() and
-                    b'__node:=cpp_pub' in _cmdline(p)]
+        assert b'robmosys_runtime/component_container' in _cmdline(containers[0])
+        # no process of its own: the container's command line is the only one naming it
+        assert [p for p in Path('/proc').iterdir() if p.name.isdigit() and
+                b'__node:=cpp_pub' in _cmdline(p)] == containers
+        from composition_interfaces.srv import ListNodes
+        listed = driver.call(ListNodes, '/mixed_system_container/_container/list_nodes',
+                             ListNodes.Request())
+        description = json.loads((test_workspace_built.install / SYSTEM / 'share' / SYSTEM /
+                                  'bringup.json').read_text())
+        cpp = {i['fqn'] for i in description['instances'] if i['plugin']}
+        assert len(cpp) == 8 and sorted(listed.full_node_names) == sorted(cpp), listed
         bringup.proc.send_signal(signal.SIGINT)
         assert bringup.proc.wait(timeout=60) == 0, bringup.output()
         assert_no_traceback(bringup.output())

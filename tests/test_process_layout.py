@@ -76,6 +76,16 @@ def _calls(path: Path, name: str) -> list[ast.Call]:
     return [n for n in ast.walk(tree) if isinstance(n, ast.Call) and ast.unparse(n.func) == name]
 
 
+def _shared_command(call: ast.Call) -> list[str]:
+    return [ast.unparse(e) for e in next(k.value for k in call.keywords if k.arg == 'cmd').elts]
+
+
+def _shared_processes(launch: Path) -> dict[str, list[str]]:
+    """Return module -> the command of the ExecuteProcess that runs it, of a launch file."""
+    commands = [_shared_command(c) for c in _calls(launch, 'ExecuteProcess')]
+    return {ast.literal_eval(c[2]).rsplit('.', 1)[-1]: c for c in commands}
+
+
 def test_a_shared_system_starts_processes_as_bringup_does(tmp_path):
     out = _generate(tmp_path, crowd_model(6, cpp=True, processes='shared'))
     description = json.loads((out / 'bringup.json').read_text())
@@ -87,30 +97,27 @@ def test_a_shared_system_starts_processes_as_bringup_does(tmp_path):
         launch = out / 'launch' / name
         # no instance in a process of its own
         assert read_launch_file(launch, out) == []
-        [shared] = _calls(launch, 'ExecuteProcess')
-        cmd = [ast.unparse(e) for e in next(k.value for k in shared.keywords
-                                            if k.arg == 'cmd').elts]
-        # python -m robmosys_runtime.container [--activate] DESCRIPTION PARAMS INSTANCE...
-        # --ros-args ..., as bringup; the file with the manager has the process bring up
-        # what it can; the description, the parameters and the ROS arguments are those of
-        # the launch arguments (robmosys_runtime.launching)
-        # and writes what it brought up where the manager reads it (--told-file)
-        self_activating = ["'--activate'", "'--report-file'", 'arguments.told_file']
-        assert (cmd[3:6] == self_activating) == (name == 'crowd_system.launch.py')
-        cmd = [c for c in cmd if c not in self_activating]
-        assert cmd[:5] == ['sys.executable', "'-m'", "'robmosys_runtime.container'",
-                           'arguments.description', 'arguments.params_file']
-        assert cmd[-2:] == ["'--ros-args'", '*arguments.ros_arguments']
-        assert [ast.literal_eval(e) for e in cmd[5:-2]] == python
+        shared = _shared_processes(launch)
+        assert sorted(shared) == ['container', 'cpp_container']
+        # python -m robmosys_runtime.[cpp_]container [--activate] DESCRIPTION PARAMS
+        # INSTANCE... --ros-args ..., as bringup; the file with the manager has each
+        # process bring up what it can and write what it brought up where the
+        # manager reads it (--told-file); the description, the parameters and the
+        # ROS arguments are those of the launch arguments (robmosys_runtime.launching)
+        for module, told, instances in (('container', 'arguments.told_file', python),
+                                        ('cpp_container', 'arguments.cpp_told_file', cpp)):
+            cmd = shared[module]
+            self_activating = ["'--activate'", "'--report-file'", told]
+            assert (cmd[3:6] == self_activating) == (name == 'crowd_system.launch.py')
+            cmd = [c for c in cmd if c not in self_activating]
+            assert cmd[:5] == ['sys.executable', "'-m'", f"'robmosys_runtime.{module}'",
+                               'arguments.description', 'arguments.params_file']
+            assert cmd[-2:] == ["'--ros-args'", '*arguments.ros_arguments']
+            assert [ast.literal_eval(e) for e in cmd[5:-2]] == instances
         if name == 'crowd_system.launch.py':
             [manager] = _calls(launch, 'Node')
             assert "arguments=['--attach', '--told-file', arguments.told_file, " \
                 '*arguments.manager]' in ast.unparse(manager)
-        [container] = _calls(launch, 'ComposableNodeContainer')
-        assert "name='crowd_system_container'" in ast.unparse(container)
-        loaded = {ast.literal_eval(next(k.value for k in c.keywords if k.arg == 'name'))
-                  for c in _calls(launch, 'ComposableNode')}
-        assert loaded == set(cpp)
     # one instance alone: a process of its own
     [node] = read_launch_file(out / 'launch' / 'crowd_system.pub_cpp.nodes.launch.py', out)
     assert node.name == 'pub_cpp'
@@ -144,20 +151,17 @@ def test_each_host_runs_its_cpp_instances_in_a_container_of_its_own(tmp_path):
             del instance['host']
     out = _generate(tmp_path, model)
     launch = out / 'launch'
-    # the robot's file loads its C++ instances into its container, as bringup --host does
-    [container] = _calls(launch / 'crowd_system.on_robot1.nodes.launch.py',
-                         'ComposableNodeContainer')
-    assert "name='crowd_system_robot1_container'" in ast.unparse(container)
-    loaded = {ast.literal_eval(next(k.value for k in c.keywords if k.arg == 'name'))
-              for c in _calls(launch / 'crowd_system.on_robot1.nodes.launch.py',
-                              'ComposableNode')}
-    assert loaded == {'pub_cpp', 'sub_cpp'}
+    # the robot's file runs its C++ instances in its container, as bringup --host
+    # does; the container is named after the host of its instances (cpp_container)
+    robot1 = _shared_processes(launch / 'crowd_system.on_robot1.nodes.launch.py')
+    assert sorted(robot1) == ['cpp_container']
+    assert [ast.literal_eval(e) for e in robot1['cpp_container'][5:-2]] == [
+        'pub_cpp', 'sub_cpp']
     # the other robot has Python instances only, in one process; the manager's host
     # has no C++ instance left, so no container
-    assert not _calls(launch / 'crowd_system.on_robot2.nodes.launch.py',
-                      'ComposableNodeContainer')
-    assert len(_calls(launch / 'crowd_system.on_robot2.nodes.launch.py', 'ExecuteProcess')) == 1
-    assert not _calls(launch / 'crowd_system.nodes.launch.py', 'ComposableNodeContainer')
+    assert sorted(_shared_processes(launch / 'crowd_system.on_robot2.nodes.launch.py')) == [
+        'container']
+    assert sorted(_shared_processes(launch / 'crowd_system.nodes.launch.py')) == ['container']
 
 
 def test_systems_share_processes_by_default_from_a_size_on(tmp_path):

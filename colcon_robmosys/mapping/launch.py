@@ -56,6 +56,8 @@ class SystemNode:
     python_class: str = ''
     #: the rclcpp_components plugin of a C++ component (its shared container loads it)
     plugin: str = ''
+    #: the executor threads its node needs at least (a shared container adds them up)
+    threads: int = 1
     #: a lifecycle node (LifecycleNode in the launch files); a plain external node is not
     lifecycle: bool = True
 
@@ -146,15 +148,14 @@ class LaunchFile:
         return any(n.respawn for n in self.together)
 
     @property
+    def loaded_respawn(self) -> bool:
+        """Tell whether the component container starts again when it ends (as bringup)."""
+        return any(n.respawn for n in self.loaded)
+
+    @property
     def description_file(self) -> str:
         """Return where the system package installs its description (the shared process)."""
         return DESCRIPTION_FILE
-
-    @property
-    def container(self) -> str:
-        """Return the node name of the host's component container, as bringup names it."""
-        return f'{self.package}_{self.host}_container' if self.host else \
-            f'{self.package}_container'
 
     @property
     def node_classes(self) -> str:
@@ -178,12 +179,10 @@ class LaunchFile:
 
     def _ros_actions(self, *more: str) -> list[str]:
         classes = {'LifecycleNode' if n.lifecycle else 'Node' for n in self.alone}
-        if self.loaded:
-            classes.add('ComposableNodeContainer')
         return sorted(classes | set(more))
 
     def _launch_actions(self, *more: str) -> list[str]:
-        return sorted(set(more) | ({'ExecuteProcess'} if self.together else set()))
+        return sorted(set(more) | ({'ExecuteProcess'} if self.together or self.loaded else set()))
 
     @property
     def activates_itself(self) -> bool:

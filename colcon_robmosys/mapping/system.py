@@ -114,7 +114,7 @@ class SystemPackage:
             'remappings': [list(r) for r in n.remappings], 'managed': n.activate,
             'after': list(n.after), 'respawn': n.respawn, 'timeout': n.timeout,
             'host': n.host, 'python_class': n.python_class, 'plugin': n.plugin,
-            'lifecycle': n.lifecycle}
+            'lifecycle': n.lifecycle, 'threads': n.threads}
             for n in self.nodes]
         watched = {w.instance: w for w in self.watched}
         installed = dict(self.model_files)
@@ -187,7 +187,7 @@ def _node(instance: Instance, component: Component,
         lifecycle=component.lifecycle_node, after=instance.after,
         fqn=node_fqn(instance), respawn=instance.respawn, timeout=instance.timeout,
         host=instance.host,
-        python_class=start.python_class, plugin=start.plugin)
+        python_class=start.python_class, plugin=start.plugin, threads=start.threads)
 
 
 #: the services and topics of an action, below its name

@@ -38,6 +38,9 @@ class NodeStart:
     python_class: str = ''
     #: the rclcpp_components plugin its package registers (a container loads it)
     plugin: str = ''
+    #: the executor threads its node needs at least (ComponentPlan.threads): a
+    #: multi-threaded component container has those of all its nodes
+    threads: int = 1
 
 
 @dataclass(frozen=True)

@@ -89,4 +89,4 @@ class CppBackend(Backend):
 
     def node_start(self, plan: ComponentPlan) -> NodeStart:
         """Return the rclcpp_components plugin the component's package registers."""
-        return NodeStart(plugin=f'{plan.package}::{plan.node_cls}')
+        return NodeStart(plugin=f'{plan.package}::{plan.node_cls}', threads=plan.threads)

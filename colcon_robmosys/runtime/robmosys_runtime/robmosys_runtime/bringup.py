@@ -32,8 +32,8 @@ from robmosys_runtime.arguments import (
 from robmosys_runtime.levels import Outcome, report
 from robmosys_runtime.locations import resolve_locations
 from robmosys_runtime.output import say
-from robmosys_runtime.processes import CPP_GROUP, NotInstalled, plan_processes, Processes
-from robmosys_runtime.told import read_told, read_told_file, tells_all
+from robmosys_runtime.processes import NotInstalled, plan_processes, Processes
+from robmosys_runtime.told import read_told, read_told_file, tellers, tells_all, told_file
 
 # rclpy is imported once the instances are starting: they start it too, in
 # parallel (see main)
@@ -64,16 +64,18 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
                         'system up, serve operators, and on Ctrl-C end without bringing '
                         'it down (the launch ends the instances)')
     parser.add_argument('--told-file', metavar='FILE',
-                        help='with --attach: the file where the shared process that the '
-                        'launch file starts writes what it brought up (its --report-file); '
-                        'read before the manager makes a DDS participant')
+                        help='with --attach: the file where the shared Python process that '
+                        'the launch file starts writes what it brought up (its --report-file; '
+                        'the C++ container writes FILE.cpp); read before the manager makes a '
+                        'DDS participant')
     parser.add_argument('--host', metavar='HOST',
                         help='start only the instances the model puts on this host, and '
                         'leave bringing them up to the manager (bringup without --host)')
     layout = parser.add_mutually_exclusive_group()
     layout.add_argument('--shared', dest='processes', action='store_true', default=None,
-                        help='run the Python instances in one process (the model says '
-                        'by default: processes: shared)')
+                        help='run the Python instances of each host in one process, '
+                        'the C++ ones in one component container (the model says by '
+                        'default: processes: shared)')
     layout.add_argument('--per-instance', dest='processes', action='store_false',
                         help='run every instance in a process of its own')
     parser.add_argument('--check-period', type=float, default=1.0, metavar='SECONDS',
@@ -135,26 +137,32 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     told: Optional[Dict[str, str]] = None
     printed = False
     if not args.attach:
-        # the shared process that brings up every managed instance tells them
-        # through a pipe, read before this process makes a DDS participant
-        pipe = os.pipe() if tells_all(description, args.processes) else None
+        # the shared processes that bring up every managed instance tell them
+        # through pipes, read before this process makes a DDS participant
+        pipes = {group: os.pipe() for group in tellers(description, args.processes)} \
+            if tells_all(description, args.processes) else {}
         try:
             groups = plan_processes(description, args.description, params_file,
-                                    shared=args.processes, report_fd=pipe and pipe[1])
+                                    shared=args.processes,
+                                    report_fds={g: w for g, (_, w) in pipes.items()})
         except NotInstalled as error:
-            if pipe:
+            for pipe in pipes.values():
                 os.close(pipe[0])
                 os.close(pipe[1])
             return not_installed(error)
         for group, (_, command_line) in groups.items():
-            processes.start(group, command_line, pass_fds=[pipe[1]] if (
-                pipe and '--report-fd' in command_line) else [])
-        if pipe:
-            os.close(pipe[1])
-            told = read_told(pipe[0], args.start_timeout + args.timeout, signalled)
+            processes.start(group, command_line,
+                            pass_fds=[pipes[group][1]] if group in pipes else [])
+        for _, writing in pipes.values():
+            os.close(writing)
+        if pipes:
+            told = read_told([r for r, _ in pipes.values()], args.start_timeout + args.timeout,
+                             signalled)
     elif args.told_file and tells_all(description, args.processes):
-        # the launch file started the shared process, which writes the file
-        told = read_told_file(args.told_file, args.start_timeout + args.timeout, signalled)
+        # the launch file started the shared processes, which write the files
+        told = read_told_file([told_file(args.told_file, g)
+                               for g in tellers(description, args.processes)],
+                              args.start_timeout + args.timeout, signalled)
     managed = [i['instance'] for i in description['instances'] if i['managed']]
     if told is not None and all(told.get(n) == 'active' for n in managed):
         # every managed instance is up: said before this process makes a DDS
@@ -317,17 +325,6 @@ def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file:
 
     def start(group: str) -> None:
         processes.start(group, groups[group][1])
-        if group == CPP_GROUP:
-            # no manager on this host: its bringup loads the nodes into the container
-            threading.Thread(target=load, args=(groups[group][0],), daemon=True,
-                             name='load C++ instances').start()
-
-    def load(names: List[str]) -> None:
-        # rclpy, once the instances have started
-        from robmosys_runtime.loading import load_on_host
-        failed = load_on_host(description, args.host, names, params_file, args.start_timeout)
-        for name, why in sorted(failed.items()):
-            say('error', f'instance {name} {why}')
 
     def on_signal(signum: int, frame: Any) -> None:
         if stopping.is_set():

@@ -39,8 +39,9 @@ from typing import Any, Callable, cast, Dict, List, Optional
 from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
 from rclpy.node import Node
 from robmosys_runtime.main import run_nodes
-from robmosys_runtime.processes import node_arguments
+from robmosys_runtime.processes import node_arguments, shared_arguments
 from robmosys_runtime.reports import Reporter
+from robmosys_runtime.told import write_whole
 
 
 def node_factory(instance: Dict[str, Any], params_file: str) -> Callable[[], Node]:
@@ -106,58 +107,34 @@ def bring_up(instances: List[Dict[str, Any]], nodes: List[Node], reporter: Repor
         write_whole(report_file, line)
 
 
-def write_whole(path: str, text: str) -> None:
-    """Write a file that its reader finds whole or not at all (a temporary file renamed)."""
-    temporary = f'{path}.{os.getpid()}.tmp'
-    try:
-        with open(temporary, 'w', encoding='utf-8') as stream:
-            stream.write(text)
-        os.replace(temporary, path)
-    except OSError as error:
-        # the manager asks the instances instead
-        print(f'container: error: {path}: {error.strerror}', file=sys.stderr)
-
-
 def main(argv: Optional[List[str]] = None) -> int:
     """Run the instances named on the command line; return the exit status."""
-    args = list(sys.argv[1:] if argv is None else argv)
-    # what follows --ros-args is the process's (--log-level), for rclpy.init
-    ros_arguments = args[args.index('--ros-args'):] if '--ros-args' in args else []
-    args = args[:len(args) - len(ros_arguments)]
-    activate = args[:1] == ['--activate']
-    args = args[1:] if activate else args
-    report_fd: Optional[int] = None
-    report_file: Optional[str] = None
-    if activate and args[:1] == ['--report-fd'] and len(args) > 1 and args[1].isdigit():
-        report_fd = int(args[1])
-        args = args[2:]
-    elif activate and args[:1] == ['--report-file'] and len(args) > 1:
-        report_file = args[1]
-        args = args[2:]
-        # the manager waits for the file only while this process lives
-        write_whole(f'{report_file}.started', str(os.getpid()))
-    if len(args) < 2:
+    args = shared_arguments(list(sys.argv[1:] if argv is None else argv))
+    if args is None:
         print('container: error: usage: container [--activate [--report-fd FD | --report-file '
               'FILE]] DESCRIPTION PARAMS_FILE INSTANCE...', file=sys.stderr)
         return 2
-    description_file, params_file, *names = args
-    with open(description_file, encoding='utf-8') as stream:
+    if args.report_file is not None:
+        # the manager waits for the file only while this process lives
+        write_whole(f'{args.report_file}.started', str(os.getpid()))
+    with open(args.description_file, encoding='utf-8') as stream:
         description = json.load(stream)
     instances = {i['instance']: i for i in description['instances']}
-    unknown = [n for n in names if n not in instances or not instances[n].get('python_class')]
-    if unknown or not names:
-        print(f"container: error: not Python instances of the system: {', '.join(unknown)}"
-              if unknown else 'container: error: no instance named', file=sys.stderr)
+    unknown = [n for n in args.names if n not in instances or
+               not instances[n].get('python_class')]
+    if unknown:
+        print(f"container: error: not Python instances of the system: {', '.join(unknown)}",
+              file=sys.stderr)
         return 2
-    chosen = [instances[n] for n in names]
+    chosen = [instances[n] for n in args.names]
     reporter = Reporter(description)
-    return run_nodes([node_factory(i, params_file) for i in chosen],
+    return run_nodes([node_factory(i, args.params_file) for i in chosen],
                      executor_name=description.get('executors', {}).get('python'),
-                     args=['container', *ros_arguments] if ros_arguments else None,
-                     before_spin=(lambda nodes: bring_up(chosen, nodes, reporter, report_fd,
-                                                         report_file))
-                     if activate else None,
-                     unspun=[reporter.make] if activate else ())
+                     args=['container', *args.ros_arguments] if args.ros_arguments else None,
+                     before_spin=(lambda nodes: bring_up(chosen, nodes, reporter, args.report_fd,
+                                                         args.report_file))
+                     if args.activate else None,
+                     unspun=[reporter.make] if args.activate else ())
 
 
 if __name__ == '__main__':

@@ -29,7 +29,8 @@ from launch.substitutions import LaunchConfiguration
 from robmosys_runtime.arguments import (
     ARGUMENTS, LOG_LEVELS, moved, moved_description, normalized_namespace, parameters_file,
     sim_time, temporary)
-from robmosys_runtime.processes import container_executable
+from robmosys_runtime.processes import CPP_GROUP
+from robmosys_runtime.told import told_file
 
 
 def _argument(context: LaunchContext, name: str) -> str:
@@ -159,14 +160,15 @@ class SystemArguments:
             self._told_file = os.path.join(folder, 'brought_up.json')
         return self._told_file
 
+    @property
+    def cpp_told_file(self) -> str:
+        """Return where the C++ component container writes what it brought up (the manager's)."""
+        return told_file(self.told_file, CPP_GROUP)
+
     @staticmethod
     def moved(name: str) -> Moved:
         """Return a namespace or ROS name of the model, moved into the namespace argument."""
         return Moved(name)
-
-    def container(self) -> str:
-        """Return the component container of the system's C++ executor, as bringup's."""
-        return container_executable(_description(self.package))
 
     @staticmethod
     def moved_nodes(context: LaunchContext, nodes: Dict[str, str]) -> Dict[str, str]:

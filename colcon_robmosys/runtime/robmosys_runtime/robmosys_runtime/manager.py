@@ -25,10 +25,8 @@ from rclpy.node import Node
 from robmosys_runtime.activation import SystemActivation
 from robmosys_runtime.heartbeat import Heartbeat
 from robmosys_runtime.levels import report
-from robmosys_runtime.loading import load_into
 from robmosys_runtime.output import say
-from robmosys_runtime.processes import (
-    container_fqn, CPP_GROUP, plan_processes, Processes, shared_python)
+from robmosys_runtime.processes import plan_processes, Processes, shared_python
 from robmosys_runtime.reports import GRACE, Reports
 from robmosys_runtime.watch import Watch, watch_diagnostics
 from std_srvs.srv import Trigger
@@ -131,7 +129,8 @@ class Manager:
         after = {n: [a for a in self.instances[n]['after'] if a in managed] for n in managed}
         timeouts = {n: float(self.instances[n]['timeout']) for n in managed
                     if self.instances[n].get('timeout')}
-        # what the shared process of this host brings up by itself, it tells
+        # what the shared Python process of this host brings up by itself, it
+        # tells on a topic too (the C++ container, only as bringup reads it)
         self.reports = Reports(
             node, description, set(managed) & set(shared_python(description, '', args.processes)),
             grace=min(GRACE, args.start_timeout), patience=args.start_timeout + args.timeout)
@@ -174,8 +173,6 @@ class Manager:
         for group, (_, args) in self.groups.items():
             if not started:
                 self.processes.start(group, args)
-            if group == CPP_GROUP:
-                self._load(group)
         self.processes.watch()
         self.activation.start()
         if getattr(self._args, 'check_period', 0.0) > 0:
@@ -197,19 +194,6 @@ class Manager:
                       silence=self._args.silence)
         self.watch = watch
         watch.run(self.stopping, self.states, lambda: self.up and not self.activation.running())
-
-    def _load(self, group: str) -> None:
-        """Load the C++ instances into their container, in the background."""
-        def load() -> None:
-            failed = load_into(self.node, container_fqn(self.description),
-                               [self.instances[n] for n in self.groups[group][0]],
-                               self._params_file, self._args.start_timeout)
-            for name, why in sorted(failed.items()):
-                if name in self.managed:
-                    self.activation.instance_failed(name, why)
-                else:
-                    say('error', f'instance {name} {why}')
-        threading.Thread(target=load, daemon=True, name=f'load {group}').start()
 
     # what operators see
 
@@ -333,8 +317,6 @@ class Manager:
             # brought down by an operator: the shared process is not to bring itself up
             args = [a for a in args if a != '--activate']
         self.processes.start(group, args)
-        if group == CPP_GROUP:
-            self._load(group)
         back = [name for name in names if name in self.managed]
         if back and self.up:
             # brought back to the state of the system, with what it held back

@@ -18,7 +18,7 @@ import subprocess
 import sys
 import threading
 import time
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple
 
 from ament_index_python.packages import get_package_prefix, PackageNotFoundError
 from robmosys_runtime.output import say
@@ -187,100 +187,68 @@ def _check_installed(needs: Dict[str, List[str]]) -> None:
         raise NotInstalled(problems)
 
 
+#: the group of the Python instances of the manager's host in one process
+PYTHON_GROUP = 'python instances'
 #: the group of the C++ instances in a shared component container
 CPP_GROUP = 'C++ instances'
-
-#: the executable of rclcpp_components that spins its nodes on each executor
-CONTAINERS = {'events': 'component_container_event',
-              'single-threaded': 'component_container',
-              'multi-threaded': 'component_container_mt'}
-
-
-def container_executable(description: Dict[str, Any]) -> str:
-    """Return the rclcpp_components container of the system's C++ executor (its file name)."""
-    executor = description.get('executors', {}).get('cpp', 'multi-threaded')
-    folder = os.path.join(get_package_prefix('rclcpp_components'), 'lib', 'rclcpp_components')
-    if not os.path.exists(os.path.join(folder, CONTAINERS[executor])):
-        # rclcpp_components before component_container_event (Kilted's
-        # 29.x has none): one thread, as the events executor has
-        return CONTAINERS['single-threaded']
-    return CONTAINERS[executor]
-
-
-def container_node(package: str, host: str = '') -> str:
-    """
-    Return the node name of the component container of a system's C++ instances.
-
-    :param host: the host whose instances it runs ('' for the manager's host):
-      each host has a container of its own, and node names are unique across hosts
-    """
-    return f'{package}_{host}_container' if host else f'{package}_container'
-
-
-def container_fqn(description: Dict[str, Any], host: str = '') -> str:
-    """Return the fully qualified name of a host's container (moved with the system)."""
-    return description.get('namespace', '') + '/' + container_node(description['package'], host)
 
 
 def plan_processes(description: Dict[str, Any], description_file: str, params_file: str,
                    host: str = '', shared: Optional[bool] = None,
-                   containers: bool = True, report_fd: Optional[int] = None) -> Groups:
+                   report_fds: Optional[Dict[str, int]] = None) -> Groups:
     """
     Return the processes that run the instances of a host ('' for the manager's).
 
     :param shared: whether the Python instances share one process, and the
         C++ ones one component container; by default what the model says
         (``processes: shared``)
-    :param containers: whether C++ instances may share a container (the
-        manager loads them into it, or the bringup of their host: ``CPP_GROUP``)
-    :param report_fd: where the shared process of the manager's host writes the
-        states it brought its instances to (``container --report-fd``)
+    :param report_fds: group -> where its process on the manager's host writes
+        the states it brought its instances to (``--report-fd``)
     :raises NotInstalled: when a package that an instance needs is not installed
     """
-    if shared is None:
-        shared = description.get('processes') == 'shared'
     instances = [i for i in description['instances'] if i.get('host', '') == host]
+    together = shared_python(description, host, shared)
+    loaded = shared_cpp(description, host, shared)
     needs: Dict[str, List[str]] = {}
     for instance in instances:
         if not instance.get('command'):
             needs.setdefault(instance['package'], []).append(instance['instance'])
-    loaded_here = [i['instance'] for i in instances
-                   if shared and containers and i.get('plugin') and not i.get('command')]
-    if loaded_here:
-        needs['rclcpp_components'] = loaded_here
     _check_installed(needs)
+    if loaded and not os.path.exists(container_program()):
+        raise NotInstalled([
+            f"instance{'s' if len(loaded) > 1 else ''} {', '.join(loaded)} need"
+            f"{'' if len(loaded) > 1 else 's'} the component container of robmosys_runtime, "
+            'which was built without rclcpp_components (build robmosys_runtime again where '
+            'rclcpp_components is installed)'])
     # what bringup's options give every process (--log-level)
     ros_arguments = list(description.get('ros_arguments', ()))
     groups: Groups = {}
-    together = shared_python(description, host, shared)
-    loaded = []
     for instance in instances:
-        if instance['instance'] in together:
-            continue
-        if shared and containers and instance.get('plugin') and not instance.get('command'):
-            loaded.append(instance['instance'])
-        else:
+        if instance['instance'] not in together and instance['instance'] not in loaded:
             groups[instance['instance']] = (
                 [instance['instance']], command(instance, params_file) + ros_arguments)
-    if together:
-        # one process, not one per CPU: two made 50 nodes up in 1.7 s, one in
-        # 1.2 s (each process is a DDS participant the others discover)
-        # on the manager's host, the process brings up what it can by itself
-        # (robmosys_runtime.container); the manager finds those active
-        groups['python instances' + (f' on {host}' if host else '')] = (together, [
-            sys.executable, '-m', 'robmosys_runtime.container',
+    # one process for each language, not one per CPU: two made 50 nodes up in
+    # 1.7 s, one in 1.2 s (each process is a DDS participant the others
+    # discover); on the manager's host each brings up what it can by itself
+    # and tells what it brought up: the manager finds those active
+    for group, names, module in ((PYTHON_GROUP, together, 'container'),
+                                 (CPP_GROUP, loaded, 'cpp_container')):
+        if not names:
+            continue
+        fd = (report_fds or {}).get(group)
+        groups[group + (f' on {host}' if host else '')] = (names, [
+            sys.executable, '-m', f'robmosys_runtime.{module}',
             *([] if host else ['--activate']),
-            *(['--report-fd', str(report_fd)] if report_fd is not None and not host else []),
-            description_file, params_file, *together] +
+            *(['--report-fd', str(fd)] if fd is not None and not host else []),
+            description_file, params_file, *names] +
             (['--ros-args', *ros_arguments] if ros_arguments else []))
-    if loaded:
-        # rclcpp_components' container of the system's executor; the manager loads the nodes
-        groups[CPP_GROUP] = (loaded, [
-            os.path.join(get_package_prefix('rclcpp_components'), 'lib', 'rclcpp_components',
-                         container_executable(description)),
-            '--ros-args', '-r', f"__node:={container_node(description['package'], host)}",
-            *_container_namespace(description), *ros_arguments])
     return groups
+
+
+def container_program() -> str:
+    """Return robmosys_runtime's component container (src/component_container.cpp)."""
+    return os.path.join(get_package_prefix('robmosys_runtime'), 'lib', 'robmosys_runtime',
+                        'component_container')
 
 
 def shared_python(description: Dict[str, Any], host: str = '',
@@ -292,12 +260,63 @@ def shared_python(description: Dict[str, Any], host: str = '',
     tells the manager what it brought up (``container --activate``), from
     ``bringup`` as from ``<system>.launch.py``.
     """
+    return _shared(description, host, shared, 'python_class')
+
+
+def shared_cpp(description: Dict[str, Any], host: str = '',
+               shared: Optional[bool] = None) -> List[str]:
+    """
+    Return the C++ instances of a host that share one component container (none if not).
+
+    On the manager's host it brings them up by itself, as the Python process
+    does (``cpp_container --activate``).
+    """
+    return _shared(description, host, shared, 'plugin')
+
+
+def _shared(description: Dict[str, Any], host: str, shared: Optional[bool],
+            start: str) -> List[str]:
+    """Return the instances of a host that a shared process creates by ``start``."""
     if shared is None:
         shared = description.get('processes') == 'shared'
     return [i['instance'] for i in description['instances'] if shared and
-            i.get('host', '') == host and i.get('python_class') and not i.get('command')]
+            i.get('host', '') == host and i.get(start) and not i.get('command')]
 
 
-def _container_namespace(description: Dict[str, Any]) -> List[str]:
-    """Return the remapping that moves the C++ container with its system (bringup --namespace)."""
-    return ['-r', f"__ns:={description['namespace']}"] if description.get('namespace') else []
+class SharedArguments(NamedTuple):
+    """
+    The command line of a shared process (``container``, ``cpp_container``).
+
+    ``[--activate [--report-fd FD | --report-file FILE]] DESCRIPTION
+    PARAMS_FILE INSTANCE... [--ros-args ...]``
+    """
+
+    activate: bool
+    report_fd: Optional[int]
+    report_file: Optional[str]
+    description_file: str
+    params_file: str
+    names: List[str]
+    #: what follows --ros-args: the process's own (--log-level)
+    ros_arguments: List[str]
+
+
+def shared_arguments(argv: List[str]) -> Optional[SharedArguments]:
+    """Return the arguments of a shared process's command line, None if it is not one."""
+    ros_arguments = argv[argv.index('--ros-args'):] if '--ros-args' in argv else []
+    args = argv[:len(argv) - len(ros_arguments)]
+    activate = args[:1] == ['--activate']
+    args = args[1:] if activate else args
+    report_fd: Optional[int] = None
+    report_file: Optional[str] = None
+    if activate and args[:1] == ['--report-fd'] and len(args) > 1 and args[1].isdigit():
+        report_fd = int(args[1])
+        args = args[2:]
+    elif activate and args[:1] == ['--report-file'] and len(args) > 1:
+        report_file = args[1]
+        args = args[2:]
+    if len(args) < 3 or args[0].startswith('--'):
+        # too few, or an option it does not know (--report-fd without a number)
+        return None
+    return SharedArguments(activate, report_fd, report_file, args[0], args[1], args[2:],
+                           ros_arguments)

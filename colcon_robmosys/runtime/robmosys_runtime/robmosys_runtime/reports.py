@@ -130,8 +130,13 @@ class Reports:
             if self._expected else None
 
     def told(self, states: Dict[str, str]) -> None:
-        """Take the states the process told otherwise (``bringup`` reads them from a pipe)."""
+        """
+        Take the states the processes told otherwise (``bringup`` reads them from pipes).
+
+        The C++ container tells only so: its instances are expected once told.
+        """
         with self._changed:
+            self._expected.update(states)
             self._begun = self._done = True
             self._states.update(states)
             self._changed.notify_all()

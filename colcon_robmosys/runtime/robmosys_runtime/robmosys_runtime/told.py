@@ -1,12 +1,14 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 """
-What the shared process tells the manager before the manager joins the graph.
+What the shared processes tell the manager before the manager joins the graph.
 
-Where the shared process of the manager's host brings up every managed
-instance (:func:`tells_all`), it writes the states it brought them to, one
-line of JSON (:func:`robmosys_runtime.container.bring_up`): to a pipe that
-``bringup`` gave it (:func:`read_told`), or to a file that
+Where the shared processes of the manager's host (the Python one, the C++
+component container: :func:`tellers`) bring up every managed instance
+(:func:`tells_all`), each writes the states it brought them to, one line of
+JSON (:func:`robmosys_runtime.container.bring_up`,
+``src/component_container.cpp``): to a pipe of its own that ``bringup`` gave
+it (:func:`read_told`), or to a file of its own (:func:`told_file`) that
 ``<system>.launch.py`` gave it and its manager (:func:`read_told_file`). The
 manager reads them before it imports rclpy or makes a DDS participant: one
 made while the instances are being made is sent every endpoint of every node
@@ -18,77 +20,106 @@ from __future__ import annotations
 import json
 import os
 import select
+import sys
 import threading
 import time
-from typing import Any, Dict, Optional
+from typing import Any, Dict, Iterable, List, Optional, Sequence
 
-from robmosys_runtime.processes import shared_python
+from robmosys_runtime.processes import CPP_GROUP, PYTHON_GROUP, shared_cpp, shared_python
+
+
+def tellers(description: Dict[str, Any], shared: Optional[bool]) -> Dict[str, List[str]]:
+    """Return group -> its instances, of the shared processes of the manager's host."""
+    groups = {PYTHON_GROUP: shared_python(description, '', shared),
+              CPP_GROUP: shared_cpp(description, '', shared)}
+    return {group: names for group, names in groups.items() if names}
 
 
 def tells_all(description: Dict[str, Any], shared: Optional[bool]) -> bool:
     """
-    Tell whether the shared process of this host brings up every managed instance.
+    Tell whether the shared processes of this host bring up every managed instance.
 
-    It then tells ``bringup`` what it brought up through a pipe, and bringup
+    They then tell ``bringup`` what they brought up through pipes, and bringup
     needs no DDS participant of its own to report the bring-up.
     """
     managed = {i['instance'] for i in description['instances'] if i['managed']}
-    return bool(managed) and managed <= set(shared_python(description, '', shared))
+    telling = {n for names in tellers(description, shared).values() for n in names}
+    return bool(managed) and managed <= telling
 
 
-def read_told(reading: int, timeout: float,
+def told_file(path: str, group: str) -> str:
+    """Return the file where the shared process of a group tells (``--told-file`` is path)."""
+    return path if group == PYTHON_GROUP else f'{path}.cpp'
+
+
+def read_told(readings: Sequence[int], timeout: float,
               signalled: threading.Event) -> Optional[Dict[str, str]]:
     """
-    Return the states the shared process wrote to a pipe, and close it.
+    Return the states the shared processes wrote to pipes, and close them.
 
-    None if it wrote none: it ended first, or did not write within timeout
-    seconds, or a signal came (the manager then learns them as from a launch).
+    None if none wrote any: each ended first, or did not write within timeout
+    seconds, or a signal came (the manager then learns them as from a
+    launch). Where only some wrote, the manager asks the others' instances.
     """
     deadline = time.monotonic() + timeout
-    data = b''
+    data = dict.fromkeys(readings, b'')
+    pending = list(readings)
     try:
-        while not signalled.is_set() and time.monotonic() < deadline:
-            ready, _, _ = select.select([reading], [], [], 0.05)
-            if not ready:
-                continue
-            chunk = os.read(reading, 65536)
-            if not chunk:
-                break
-            data += chunk
-            if data.endswith(b'\n'):
-                break
+        while pending and not signalled.is_set() and time.monotonic() < deadline:
+            ready, _, _ = select.select(pending, [], [], 0.05)
+            for reading in ready:
+                chunk = os.read(reading, 65536)
+                data[reading] += chunk
+                if not chunk or data[reading].endswith(b'\n'):
+                    pending.remove(reading)
     finally:
-        os.close(reading)
-    return told_states(data)
+        for reading in readings:
+            os.close(reading)
+    return _merged(told_states(d) for d in data.values())
 
 
-def read_told_file(path: str, timeout: float,
+def read_told_file(paths: Sequence[str], timeout: float,
                    signalled: threading.Event) -> Optional[Dict[str, str]]:
     """
-    Return the states the shared process wrote to a file (``container --report-file``).
+    Return the states the shared processes wrote to files (``--report-file``).
 
-    None if it wrote none: its process ended first (the pid it wrote to
-    ``<file>.started`` is gone), or it did not write within timeout seconds,
-    or a signal came.
+    None if none wrote any: each process ended first (the pid it wrote to
+    ``<file>.started`` is gone), or did not write within timeout seconds, or
+    a signal came. Where only some wrote, the manager asks the others' instances.
     """
     deadline = time.monotonic() + timeout
-    while not signalled.is_set() and time.monotonic() < deadline:
-        try:
-            with open(path, 'rb') as stream:
-                return told_states(stream.read())
-        except FileNotFoundError:
-            pass
-        try:
-            with open(f'{path}.started', encoding='utf-8') as stream:
-                os.kill(int(stream.read()), 0)
-        except (FileNotFoundError, ValueError, PermissionError):
-            pass  # not started yet, or being written; or another user's process
-        except ProcessLookupError:
-            # it ended before it wrote (a process started again writes anew)
-            if not os.path.exists(path):
-                return None
-        signalled.wait(0.02)
-    return None
+    told: List[Optional[Dict[str, str]]] = []
+    pending = list(paths)
+    while pending and not signalled.is_set() and time.monotonic() < deadline:
+        for path in list(pending):
+            try:
+                with open(path, 'rb') as stream:
+                    told.append(told_states(stream.read()))
+                pending.remove(path)
+                continue
+            except FileNotFoundError:
+                pass
+            try:
+                with open(f'{path}.started', encoding='utf-8') as stream:
+                    os.kill(int(stream.read()), 0)
+            except (FileNotFoundError, ValueError, PermissionError):
+                pass  # not started yet, or being written; or another user's process
+            except ProcessLookupError:
+                # it ended before it wrote (a process started again writes anew)
+                if not os.path.exists(path):
+                    pending.remove(path)
+        if pending:
+            signalled.wait(0.02)
+    return _merged(told)
+
+
+def _merged(told: Iterable[Optional[Dict[str, str]]]) -> Optional[Dict[str, str]]:
+    """Return the states of every process that told any, None if none did."""
+    merged: Optional[Dict[str, str]] = None
+    for states in told:
+        if states is not None:
+            merged = {**(merged or {}), **states}
+    return merged
 
 
 def told_states(data: bytes) -> Optional[Dict[str, str]]:
@@ -98,3 +129,15 @@ def told_states(data: bytes) -> Optional[Dict[str, str]]:
     except ValueError:
         return None
     return {str(k): str(v) for k, v in states.items()} if isinstance(states, dict) else None
+
+
+def write_whole(path: str, text: str) -> None:
+    """Write a file that its reader finds whole or not at all (a temporary file renamed)."""
+    temporary = f'{path}.{os.getpid()}.tmp'
+    try:
+        with open(temporary, 'w', encoding='utf-8') as stream:
+            stream.write(text)
+        os.replace(temporary, path)
+    except OSError as error:
+        # the manager asks the instances instead
+        print(f'{path}: error: {error.strerror}', file=sys.stderr)

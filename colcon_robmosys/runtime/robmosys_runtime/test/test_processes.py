@@ -6,8 +6,10 @@ import sys
 
 from conftest import wait_until
 import pytest
+from robmosys_runtime import processes
+from robmosys_runtime.cpp_container import container_node, main, program_arguments
 from robmosys_runtime.processes import (
-    container_fqn, container_node, NotInstalled, plan_processes, Processes)
+    NotInstalled, plan_processes, Processes, shared_arguments, SharedArguments)
 
 
 def test_a_process_is_starting_then_running_then_exited():
@@ -56,6 +58,77 @@ def test_each_host_has_a_container_of_its_own_moved_with_the_system():
     # node names are unique across hosts: robot1's container is not the manager's
     assert container_node('fleet') == 'fleet_container'
     assert container_node('fleet', 'robot1') == 'fleet_robot1_container'
-    assert container_fqn({'package': 'fleet'}) == '/fleet_container'
-    assert container_fqn({'package': 'fleet', 'namespace': '/site'},
-                         'robot1') == '/site/fleet_robot1_container'
+    description = {'package': 'fleet', 'namespace': '/site', 'executors': {'cpp': 'events'},
+                   'instances': [
+                       _instance('arm', 'arm_pkg', plugin='arm_pkg::Arm', host='robot1',
+                                 managed=True, after=['base'], namespace='/site/robot1',
+                                 remappings=[['cmd', '/site/cmd']], threads=3),
+                       _instance('eye', 'eye_pkg', plugin='eye_pkg::Eye', host='robot1',
+                                 managed=False, threads=2),
+                       _instance('base', 'base_pkg', python_class='base_pkg.node:Base')]}
+    args = shared_arguments(['--activate', '--report-fd', '7', 'bringup.json', 'params.yaml',
+                             'arm', 'eye', '--ros-args', '--log-level', 'warn'])
+    assert args == SharedArguments(True, 7, None, 'bringup.json', 'params.yaml', ['arm', 'eye'],
+                                   ['--ros-args', '--log-level', 'warn'])
+    # everything counted, nothing for the program to parse but words
+    assert program_arguments(description, args, '/p/component_container') == [
+        '/p/component_container', 'events', '5', '1', '7', '',
+        '2',
+        'arm', 'arm_pkg', 'arm_pkg::Arm', '1', '1', 'base',
+        '8', '-r', '__node:=arm', '-r', '__ns:=/site/robot1', '--params-file', 'params.yaml',
+        '-r', 'cmd:=/site/cmd',
+        'eye', 'eye_pkg', 'eye_pkg::Eye', '0', '0',
+        '4', '-r', '__node:=eye', '--params-file', 'params.yaml',
+        '--ros-args', '-r', '__node:=fleet_robot1_container', '-r', '__ns:=/site',
+        '--log-level', 'warn']
+    # a file for the launch's manager; no namespace, nothing more for the process
+    args = shared_arguments(['--activate', '--report-file', '/tmp/told', 'bringup.json',
+                             'params.yaml', 'eye'])
+    description['namespace'] = ''
+    assert program_arguments(description, args, 'c')[1:7] == [
+        'events', '2', '1', '-1', '/tmp/told', '1']
+    assert program_arguments(description, args, 'c')[-3:] == [
+        '--ros-args', '-r', '__node:=fleet_robot1_container']
+
+
+def test_a_shared_process_s_command_line_is_refused_when_it_is_not_one(tmp_path, capsys):
+    assert shared_arguments(['bringup.json', 'params.yaml']) is None
+    assert shared_arguments(['--activate', '--report-fd', 'x', 'b.json', 'p.yaml']) is None
+    assert main(['bringup.json']) == 2
+    description = tmp_path / 'bringup.json'
+    description.write_text(
+        '{"package": "fleet", "instances": [{"instance": "base", "python_class": "a:B"}]}')
+    assert main([str(description), 'params.yaml', 'base', 'nobody']) == 2
+    assert capsys.readouterr().err.splitlines()[-1] == \
+        'cpp_container: error: not C++ instances of the system: base, nobody'
+
+
+def test_cpp_instances_share_the_container_and_python_ones_a_process(tmp_path, monkeypatch):
+    # rclpy: a package installed wherever these tests run
+    description = {'package': 'fleet', 'processes': 'shared', 'instances': [
+        _instance('arm', 'rclpy', plugin='rclpy::Arm', managed=True),
+        _instance('base', 'rclpy', python_class='rclpy.node:Base', managed=True),
+        _instance('solo', 'rclpy', command=['/bin/true'], plugin='rclpy::Solo')]}
+    # robmosys_runtime built without rclcpp_components has no container: said, nothing started
+    monkeypatch.setattr(processes, 'container_program', lambda: str(tmp_path / 'none'))
+    with pytest.raises(NotInstalled) as raised:
+        plan_processes(description, 'bringup.json', 'params.yaml')
+    assert raised.value.problems == [
+        'instance arm needs the component container of robmosys_runtime, which was built '
+        'without rclcpp_components (build robmosys_runtime again where rclcpp_components is '
+        'installed)']
+    (tmp_path / 'none').write_text('')
+    groups = plan_processes(description, 'bringup.json', 'params.yaml',
+                            report_fds={'C++ instances': 9})
+    assert sorted(groups) == ['C++ instances', 'python instances', 'solo']
+    assert groups['C++ instances'] == (['arm'], [
+        sys.executable, '-m', 'robmosys_runtime.cpp_container', '--activate',
+        '--report-fd', '9', 'bringup.json', 'params.yaml', 'arm'])
+    assert groups['python instances'][1][3:] == [
+        '--activate', 'bringup.json', 'params.yaml', 'base']
+    # another host: nothing brought up there, nothing told
+    for instance in description['instances']:
+        instance['host'] = 'robot1'
+    groups = plan_processes(description, 'bringup.json', 'params.yaml', host='robot1',
+                            report_fds={'C++ instances': 9})
+    assert groups['C++ instances on robot1'][1][3:] == ['bringup.json', 'params.yaml', 'arm']

@@ -14,7 +14,7 @@ from rclpy.lifecycle import TransitionCallbackReturn
 from robmosys_runtime.activation import SystemActivation
 from robmosys_runtime.container import bring_up
 from robmosys_runtime.reports import Reporter, reporter_name, Reports
-from robmosys_runtime.told import read_told, read_told_file, tells_all
+from robmosys_runtime.told import read_told, read_told_file, tellers, tells_all, told_file
 
 DESCRIPTION = {'package': 'tidy_system', 'namespace': '/robot1'}
 
@@ -108,7 +108,7 @@ def test_the_states_go_to_the_pipe_of_bringup_too_and_it_is_closed(spinning):
     nodes, reporter = _process(spinning, instances, refusing={'refusing'})
     reading, writing = os.pipe()
     bring_up(instances, nodes, reporter, writing)
-    told = read_told(reading, 5.0, threading.Event())
+    told = read_told([reading], 5.0, threading.Event())
     assert told == {'first': 'active', 'after_refusing': 'unconfigured'}
     # both ends are closed: the process's by bring_up, bringup's by read_told
     for fd in (reading, writing):
@@ -132,11 +132,11 @@ def test_a_pipe_that_says_nothing_leaves_the_states_to_the_manager():
     # the process ended before it wrote (end of file)
     reading, writing = os.pipe()
     os.close(writing)
-    assert read_told(reading, 5.0, threading.Event()) is None
+    assert read_told([reading], 5.0, threading.Event()) is None
     # it wrote something else than the states
     reading, writing = os.pipe()
     os.write(writing, b'["first"]\n')
-    assert read_told(reading, 5.0, threading.Event()) is None
+    assert read_told([reading], 5.0, threading.Event()) is None
     os.close(writing)
     # nothing within the timeout, or a signal came: no longer waited for
     for timeout, signalled in ((0.3, threading.Event()), (30.0, threading.Event())):
@@ -144,7 +144,7 @@ def test_a_pipe_that_says_nothing_leaves_the_states_to_the_manager():
         if timeout > 1:
             threading.Timer(0.3, signalled.set).start()
         start = time.monotonic()
-        assert read_told(reading, timeout, signalled) is None
+        assert read_told([reading], timeout, signalled) is None
         assert time.monotonic() - start < 3
         os.close(writing)
     # a line written in pieces is read whole
@@ -152,7 +152,7 @@ def test_a_pipe_that_says_nothing_leaves_the_states_to_the_manager():
     text = json.dumps({'first': 'active'}).encode() + b'\n'
     os.write(writing, text[:5])
     threading.Timer(0.2, lambda: os.write(writing, text[5:])).start()
-    assert read_told(reading, 5.0, threading.Event()) == {'first': 'active'}
+    assert read_told([reading], 5.0, threading.Event()) == {'first': 'active'}
     os.close(writing)
 
 
@@ -164,11 +164,15 @@ def test_bringup_reads_the_pipe_only_where_the_shared_process_brings_up_every_ma
     # an unmanaged instance elsewhere does not matter
     assert tells_all(system({'instance': 'a'}, {'instance': 'b', 'managed': False,
                                                 'python_class': None, 'plugin': 'x'}), None)
-    # one per instance; a C++ instance; another host; an instance run by a command
+    # the C++ component container tells too: both together tell all
+    both = system({'instance': 'a'}, {'instance': 'b', 'python_class': None, 'plugin': 'x'})
+    assert tells_all(both, None)
+    assert tellers(both, None) == {'python instances': ['a'], 'C++ instances': ['b']}
+    assert tellers(system({'instance': 'a'}), None) == {'python instances': ['a']}
+    # one per instance; another host; an instance run by a command
     assert not tells_all(system({'instance': 'a'}, processes='per-instance'), None)
     assert not tells_all(system({'instance': 'a'}), False)
-    assert not tells_all(system({'instance': 'a'}, {'instance': 'b', 'python_class': None,
-                                                    'plugin': 'x'}), None)
+    assert not tells_all(both, False)
     assert not tells_all(system({'instance': 'a'}, {'instance': 'b', 'host': 'arm'}), None)
     assert not tells_all(system({'instance': 'a'}, {'instance': 'b', 'command': ['x']}), None)
     # nothing managed: nothing to tell
@@ -180,7 +184,7 @@ def test_the_states_go_to_the_file_of_the_launch_too(spinning, tmp_path):
     nodes, reporter = _process(spinning, instances)
     told = tmp_path / 'brought_up.json'
     bring_up(instances, nodes, reporter, report_file=str(told))
-    assert read_told_file(str(told), 5.0, threading.Event()) == {'first': 'active'}
+    assert read_told_file([str(told)], 5.0, threading.Event()) == {'first': 'active'}
     # written whole: no temporary file is left beside it
     assert sorted(p.name for p in tmp_path.iterdir()) == ['brought_up.json']
 
@@ -192,21 +196,61 @@ def test_the_file_is_waited_for_while_its_process_lives(tmp_path):
                            capture_output=True, text=True, check=True)
     (tmp_path / 'brought_up.json.started').write_text(ended.stdout.strip())
     start = time.monotonic()
-    assert read_told_file(str(told), 30.0, threading.Event()) is None
+    assert read_told_file([str(told)], 30.0, threading.Event()) is None
     assert time.monotonic() - start < 3
     # one that lives writes it later: read once whole
     (tmp_path / 'brought_up.json.started').write_text(str(os.getpid()))
     threading.Timer(0.5, lambda: told.write_text('{"first": "active"}\n')).start()
     start = time.monotonic()
-    assert read_told_file(str(told), 30.0, threading.Event()) == {'first': 'active'}
+    assert read_told_file([str(told)], 30.0, threading.Event()) == {'first': 'active'}
     assert 0.3 < time.monotonic() - start < 5
     # nothing started: waited for until the timeout, or a signal
     told.unlink()
     (tmp_path / 'brought_up.json.started').unlink()
     start = time.monotonic()
-    assert read_told_file(str(told), 0.5, threading.Event()) is None
+    assert read_told_file([str(told)], 0.5, threading.Event()) is None
     assert 0.4 < time.monotonic() - start < 3
     signalled = threading.Event()
     threading.Timer(0.3, signalled.set).start()
-    assert read_told_file(str(told), 30.0, signalled) is None
+    assert read_told_file([str(told)], 30.0, signalled) is None
     assert time.monotonic() - start < 5
+
+
+def test_two_processes_tell_through_pipes_and_files_of_their_own():
+    # the shared Python process and the C++ container, each on its pipe
+    python, python_writing = os.pipe()
+    cpp, cpp_writing = os.pipe()
+    os.write(python_writing, b'{"talker": "active"}\n')
+    threading.Timer(0.3, lambda: os.write(cpp_writing, b'{"listener": "active"}\n')).start()
+    assert read_told([python, cpp], 5.0, threading.Event()) == {
+        'talker': 'active', 'listener': 'active'}
+    os.close(python_writing)
+    os.close(cpp_writing)
+    # one ended without writing: the other's states are taken, the rest asked
+    python, python_writing = os.pipe()
+    cpp, cpp_writing = os.pipe()
+    os.close(cpp_writing)
+    os.write(python_writing, b'{"talker": "active"}\n')
+    assert read_told([python, cpp], 5.0, threading.Event()) == {'talker': 'active'}
+    os.close(python_writing)
+
+
+def test_the_cpp_container_tells_in_a_file_beside_the_launch_s(tmp_path):
+    told = str(tmp_path / 'brought_up.json')
+    assert told_file(told, 'python instances') == told
+    assert told_file(told, 'C++ instances') == told + '.cpp'
+    (tmp_path / 'brought_up.json').write_text('{"talker": "active"}\n')
+    threading.Timer(0.3, lambda: (tmp_path / 'brought_up.json.cpp').write_text(
+        '{"listener": "unconfigured"}\n')).start()
+    assert read_told_file([told, told + '.cpp'], 5.0, threading.Event()) == {
+        'talker': 'active', 'listener': 'unconfigured'}
+
+
+def test_what_the_cpp_container_told_is_taken_though_no_topic_was_expected(spinning):
+    manager = spinning.add(LifecycleNode('manager', context=spinning.context))
+    # the manager expects a topic only of the Python process (here: none)
+    reports = Reports(manager, DESCRIPTION, [])
+    reports.told({'listener': 'active'})
+    assert reports.take('listener', _never) == 'active'
+    # taken once: a later bring-up asks the instance
+    assert reports.take('listener', _never) is None
