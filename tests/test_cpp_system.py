@@ -391,8 +391,9 @@ def test_a_shared_system_runs_its_cpp_instances_in_one_container(
     """With bringup --shared, the C++ instances run in one component container.
 
     The Python ones share one process; parameters of the system's file reach
-    the nodes the container makes. The container is robmosys_runtime's: it
-    brought its instances up itself, and serves rclcpp_components' services.
+    the nodes the container makes. The container is robmosys_runtime's, built
+    by the system package: it brought its instances up itself, and serves
+    rclcpp_components' services.
     """
     from colcon_robmosys.devtools.ros_env import background
     instances = [i.name for i in _model_system().instances]
@@ -405,11 +406,16 @@ def test_a_shared_system_runs_its_cpp_instances_in_one_container(
         # C++ -> Python and Python -> C++, across the two shared processes
         assert wait_until(lambda: len(MAPS.findall(bringup.output())) >= 2, timeout=30), \
             bringup.output()
+        # each shared process brought up what it could by itself (the container's
+        # client after its server too); the manager only the two that come after an
+        # instance of the other process
+        assert set(re.findall(r'instance (\w+) is active', bringup.output())) == {
+            'cpp_watcher', 'py_watcher'}, bringup.output()
         assert driver.parameters('/sender', ['width']) == {'width': 5}
         containers = [p for p in Path('/proc').iterdir() if p.name.isdigit() and
                       b'__node:=mixed_system_container' in _cmdline(p)]
         assert len(containers) == 1, containers
-        assert b'robmosys_runtime/component_container' in _cmdline(containers[0])
+        assert f'{SYSTEM}/component_container'.encode() in _cmdline(containers[0])
         # no process of its own: the container's command line is the only one naming it
         assert [p for p in Path('/proc').iterdir() if p.name.isdigit() and
                 b'__node:=cpp_pub' in _cmdline(p)] == containers

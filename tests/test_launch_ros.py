@@ -310,10 +310,14 @@ def test_a_shared_system_comes_up_through_its_launch_file_and_ctrl_c_ends_it_in_
             for fqn, scans in (('/robot1/pub_0', 7), ('/robot1/pub_cpp', 8)):
                 assert driver.state(fqn) == 'active', fqn
                 assert driver.parameters(fqn, ['noOfScans']) == {'noOfScans': scans}, fqn
+        # both shared processes brought their instances up and told the manager
+        # (--report-file, FILE.cpp): it took none through a transition
+        assert not re.search(r'instance \w+ is active', run.output()), run.output()
         marked = processes_marked(env[MARKER])
         commands = [(Path('/proc') / str(p) / 'cmdline').read_bytes() for p in marked]
         assert sum(b'robmosys_runtime.container' in c for c in commands) == 1, commands
-        assert sum(b'__node:=crowd_system_container' in c for c in commands) == 1, commands
+        assert sum(b'__node:=crowd_system_container' in c and
+                   b'crowd_system/component_container' in c for c in commands) == 1, commands
         # the launch, the Python instances, the container, the manager
         assert len(marked) == 4, commands
         took, output = ctrl_c(run, env[MARKER])

@@ -15,8 +15,10 @@ from colcon_robmosys.mapping.common import (
     RUNTIME_PACKAGE, unique)
 from colcon_robmosys.mapping.conformance import watched_instances, WatchedInstance
 from colcon_robmosys.mapping.connections import (
-    connection_topics, node_fqn, provided_end, system_connections, SystemConnection)
+    connection_topics, node_fqn, system_connections, SystemConnection)
 from colcon_robmosys.mapping.declared import declared_parameters, DeclaredParameter
+from colcon_robmosys.mapping.diagram import (
+    diagram_edges, diagram_instances, DiagramEdge, DiagramInstance)
 from colcon_robmosys.mapping.executors import shared_executors
 from colcon_robmosys.mapping.launch import (
     launch_files, LaunchFile, PARAMS_FILE, process_layout, SystemNode)
@@ -25,8 +27,7 @@ from colcon_robmosys.mapping.parameters import NODE_PARAMETERS
 from colcon_robmosys.mapping.portkinds import port_kind
 from colcon_robmosys.mapping.qos import override_parameters
 from colcon_robmosys.model.parameters import freeze_parameter_value, node_parameters
-from colcon_robmosys.model.types import (
-    Component, Instance, PortRef, Role, System, Workspace)
+from colcon_robmosys.model.types import Component, Instance, System, Workspace
 
 
 @dataclass(frozen=True)
@@ -35,38 +36,6 @@ class NodeParameters:
 
     fqn: str
     values: tuple[tuple[str, Any], ...]
-
-
-@dataclass(frozen=True)
-class DiagramPort:
-    """A port in the diagram."""
-
-    name: str
-    role: str
-    pattern: str
-
-
-@dataclass(frozen=True)
-class DiagramInstance:
-    """An instance in the diagram."""
-
-    name: str
-    fqn: str
-    component: str
-    package: str
-    managed: bool
-    ports: tuple[DiagramPort, ...]
-
-
-@dataclass(frozen=True)
-class DiagramEdge:
-    """A connection in the diagram, drawn the way the data flows."""
-
-    source: str
-    source_port: str
-    target: str
-    target_port: str
-    label: str
 
 
 @dataclass(frozen=True)
@@ -93,6 +62,9 @@ class SystemPackage:
     processes: str = 'per_instance'
     #: per instance, in model order: what the system manager's watch compares
     watched: tuple[WatchedInstance, ...] = ()
+    #: whether it builds a component container for its C++ instances (any shares it
+    #: with processes: shared, or bringup --shared)
+    cpp_container: bool = False
     #: each model file of the workspace -> its installed copy (share/<package>/...), where
     #: bringup.json's locations point: they hold no path of the machine that built them
     model_files: tuple[tuple[str, str], ...] = ()
@@ -249,43 +221,6 @@ def _parameters(system: System, components: dict[str, Component],
     return tuple(nodes)
 
 
-def _instances(system: System, components: dict[str, Component]
-               ) -> tuple[DiagramInstance, ...]:
-    return tuple(
-        DiagramInstance(
-            name=i.name, fqn=node_fqn(i), component=components[i.name].name,
-            package=components[i.name].package, managed=i.activate,
-            ports=tuple(DiagramPort(p.name, p.role.value, p.pattern.value)
-                        for p in components[i.name].ports))
-        for i in system.instances)
-
-
-def _edges(system: System, components: dict[str, Component],
-           topics: dict[tuple[str, str], str]) -> tuple[DiagramEdge, ...]:
-    edges = []
-    for connection in system.connections:
-        source = provided_end(connection, components)
-        port = components[source.instance].port(source.port)
-        assert port is not None
-        name = topics[(source.instance, source.port)]
-        if connection.target is None:
-            # a name outside the model: a plain node of the diagram, named so
-            target = PortRef(name, '', source.location)
-        else:
-            target = (connection.target if source == connection.source
-                      else connection.source)
-        # arrows follow the data: from the publisher of push and event, to
-        # the server of send, query and action (the other end of a
-        # connection of one port is its peer: publisher or server when the
-        # port is required)
-        if port_kind(port).data_to_provider != (port.role is Role.REQUIRED):
-            source, target = target, source
-        edges.append(DiagramEdge(
-            source.instance, source.port, target.instance, target.port,
-            f'{port.pattern.value} {port.type}\\n{name}'))
-    return tuple(edges)
-
-
 def _installed_models(workspace: Workspace) -> dict[str, str]:
     """Return where each model file of the workspace is installed, by a package made from it."""
     files: dict[str, str] = {}
@@ -328,13 +263,15 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
     # robmosys_runtime: the launch files activate with its SystemActivation
     exec_depends = packages + ('launch', 'launch_ros', 'lifecycle_msgs',
                                'ament_index_python', RUNTIME_PACKAGE)
+    # C++ instances: the package builds their component container, robmosys_runtime's
+    cpp_container = any(n.plugin for n in nodes)
     return SystemPackage(
         banner=banner, package=system.package, name=system.name, nodes=nodes,
         launch_files=launch_files(system, nodes, banner),
         params=_parameters(system, components, topics),
         diagram=f'doc/{system.package}.dot',
-        instances=_instances(system, components),
-        edges=_edges(system, components, topics),
+        instances=diagram_instances(system, components),
+        edges=diagram_edges(system, components, topics),
         connections=system_connections(system, components, topics),
         processes=process_layout(system),
         watched=watched_instances(system, components, topics),
@@ -343,7 +280,9 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
                                                     dict(system.parameters)))
                        for i in system.instances),
         executors=shared_executors(system.executor, components.values()),
-        depends=packages, exec_depends=exec_depends,
+        depends=packages, exec_depends=exec_depends, cpp_container=cpp_container,
         package_xml=package_xml(banner, system.info, buildtool=['ament_cmake'],
+                                depend=(RUNTIME_PACKAGE, 'rclcpp_components')
+                                if cpp_container else (),
                                 exec_=exec_depends,
                                 test=('ament_cmake_pytest', 'ament_cmake_ros')))

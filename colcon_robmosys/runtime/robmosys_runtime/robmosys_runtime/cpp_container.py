@@ -6,9 +6,10 @@ Several C++ instances of a system in one process (``processes: shared``).
 ``python -m robmosys_runtime.cpp_container [--activate [--report-fd FD |
 --report-file FILE]] DESCRIPTION PARAMS_FILE INSTANCE... [--ros-args ...]``
 takes what :mod:`robmosys_runtime.container` takes, for the C++ instances of
-one host, and becomes (``exec``, the same process) robmosys_runtime's
-component container (``lib/robmosys_runtime/component_container``, from
-``src/component_container.cpp``) with everything it needs on its command line:
+one host, and becomes (``exec``, the same process) the system package's
+component container (``lib/<system>/component_container``, robmosys_runtime's
+``src/component_container.cpp`` that the package builds) with everything it
+needs on its command line:
 the C++ program reads no JSON. The container is rclcpp_components' (its node,
 ``<system>_container`` or ``<system>_<host>_container``, serves
 ``_container/load_node``), and makes the node of each instance itself with its
@@ -93,13 +94,13 @@ def main(argv: Optional[List[str]] = None) -> int:
         print(f"cpp_container: error: not C++ instances of the system: {', '.join(unknown)}",
               file=sys.stderr)
         return 2
-    command = program_arguments(description, args, container_program())
+    command = program_arguments(description, args, container_program(description['package']))
     sys.stdout.flush()
     try:
         os.execv(command[0], command)
     except OSError as error:
-        print(f'{command[0]}: error: {error.strerror} (robmosys_runtime was built without '
-              'rclcpp_components?)', file=sys.stderr)
+        print(f"{command[0]}: error: {error.strerror} (the package '{description['package']}' "
+              'was built without rclcpp_components?)', file=sys.stderr)
     return 1
 
 

@@ -214,12 +214,12 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
         if not instance.get('command'):
             needs.setdefault(instance['package'], []).append(instance['instance'])
     _check_installed(needs)
-    if loaded and not os.path.exists(container_program()):
+    if loaded and not os.path.exists(container_program(description['package'])):
         raise NotInstalled([
             f"instance{'s' if len(loaded) > 1 else ''} {', '.join(loaded)} need"
-            f"{'' if len(loaded) > 1 else 's'} the component container of robmosys_runtime, "
-            'which was built without rclcpp_components (build robmosys_runtime again where '
-            'rclcpp_components is installed)'])
+            f"{'' if len(loaded) > 1 else 's'} the component container of the package "
+            f"'{description['package']}', which was built without rclcpp_components (build it "
+            'again where rclcpp_components is installed)'])
     # what bringup's options give every process (--log-level)
     ros_arguments = list(description.get('ros_arguments', ()))
     groups: Groups = {}
@@ -245,10 +245,14 @@ def plan_processes(description: Dict[str, Any], description_file: str, params_fi
     return groups
 
 
-def container_program() -> str:
-    """Return robmosys_runtime's component container (src/component_container.cpp)."""
-    return os.path.join(get_package_prefix('robmosys_runtime'), 'lib', 'robmosys_runtime',
-                        'component_container')
+def container_program(package: str) -> str:
+    """
+    Return the component container of a system package's C++ instances.
+
+    robmosys_runtime's ``src/component_container.cpp``, which the package
+    builds where rclcpp_components is installed.
+    """
+    return os.path.join(get_package_prefix(package), 'lib', package, 'component_container')
 
 
 def shared_python(description: Dict[str, Any], host: str = '',

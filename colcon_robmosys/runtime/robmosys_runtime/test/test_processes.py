@@ -109,14 +109,13 @@ def test_cpp_instances_share_the_container_and_python_ones_a_process(tmp_path, m
         _instance('arm', 'rclpy', plugin='rclpy::Arm', managed=True),
         _instance('base', 'rclpy', python_class='rclpy.node:Base', managed=True),
         _instance('solo', 'rclpy', command=['/bin/true'], plugin='rclpy::Solo')]}
-    # robmosys_runtime built without rclcpp_components has no container: said, nothing started
-    monkeypatch.setattr(processes, 'container_program', lambda: str(tmp_path / 'none'))
+    # a system package built without rclcpp_components has no container: said, nothing started
+    monkeypatch.setattr(processes, 'container_program', lambda package: str(tmp_path / 'none'))
     with pytest.raises(NotInstalled) as raised:
         plan_processes(description, 'bringup.json', 'params.yaml')
     assert raised.value.problems == [
-        'instance arm needs the component container of robmosys_runtime, which was built '
-        'without rclcpp_components (build robmosys_runtime again where rclcpp_components is '
-        'installed)']
+        "instance arm needs the component container of the package 'fleet', which was built "
+        'without rclcpp_components (build it again where rclcpp_components is installed)']
     (tmp_path / 'none').write_text('')
     groups = plan_processes(description, 'bringup.json', 'params.yaml',
                             report_fds={'C++ instances': 9})
