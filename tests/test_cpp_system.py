@@ -407,10 +407,10 @@ def test_a_shared_system_runs_its_cpp_instances_in_one_container(
         assert wait_until(lambda: len(MAPS.findall(bringup.output())) >= 2, timeout=30), \
             bringup.output()
         # each shared process brought up what it could by itself (the container's
-        # client after its server too); the manager only the two that come after an
+        # client after its server too); the manager only those that come after an
         # instance of the other process
         assert set(re.findall(r'instance (\w+) is active', bringup.output())) == {
-            'cpp_watcher', 'py_watcher'}, bringup.output()
+            'cpp_watcher', 'py_watcher', 'py_client'}, bringup.output()
         assert driver.parameters('/sender', ['width']) == {'width': 5}
         containers = [p for p in Path('/proc').iterdir() if p.name.isdigit() and
                       b'__node:=mixed_system_container' in _cmdline(p)]

@@ -159,6 +159,18 @@ class SystemActivation:
         with self._changed:
             self._changed.notify_all()
 
+    def close(self, timeout: float = 5.0) -> None:
+        """
+        Stop, and wait for the clients being made in the background (before the node goes).
+
+        A client made while the node is destroyed raises in that thread.
+        """
+        self.stop()
+        with self._changed:
+            preparer = self._preparer
+        if preparer is not None:
+            preparer.join(timeout)
+
     def instance_failed(self, name: str, why: str) -> None:
         """Report that an instance failed outside its transitions (its process died)."""
         with self._changed:
@@ -267,7 +279,8 @@ class SystemActivation:
             alive[0].join()
         while True:
             with self._changed:
-                if not self._unprepared:
+                # none left, or the system is shutting down: its node goes (close)
+                if not self._unprepared or self._stop.is_set():
                     self._preparer = None
                     return
                 name = self._unprepared.pop(0)

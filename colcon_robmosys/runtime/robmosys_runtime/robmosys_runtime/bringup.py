@@ -214,6 +214,8 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
                 print(f'bringup: {step}', flush=True)
     finally:
         manager.processes.stop()
+        # nothing makes clients on the node any more, before it goes
+        manager.activation.close()
         executor.shutdown()
         # a thread still in rcl when the process ends aborts it ("terminate called
         # without an active exception"): the spinning thread ends first

@@ -101,6 +101,24 @@ def test_the_activation_takes_a_told_state_and_asks_what_was_not_told(spinning):
     assert not activation.discovering('asked')
 
 
+def test_closing_waits_for_the_clients_made_in_the_background(spinning, monkeypatch):
+    # every instance told: their clients are made one by one once the bring-up is
+    # over; the system shuts down meanwhile (Ctrl-C right after the report), and
+    # the node goes right after close(): no client is made on it then
+    driver = LifecycleNode('driver', context=spinning.context)
+    names = {f'told_{i}': f'/system/told_{i}' for i in range(300)}
+    activation = SystemActivation(driver, names, {}, timeout=10.0,
+                                  told=lambda name, stopped: 'active')
+    failures = []
+    monkeypatch.setattr(threading, 'excepthook', failures.append)
+    activation.start()
+    assert activation.wait(30).ok
+    activation.close()
+    driver.destroy_node()
+    time.sleep(0.5)
+    assert failures == []
+
+
 def test_the_states_go_to_the_pipe_of_bringup_too_and_it_is_closed(spinning):
     instances = [{'instance': 'first', 'managed': True},
                  {'instance': 'refusing', 'managed': True},
