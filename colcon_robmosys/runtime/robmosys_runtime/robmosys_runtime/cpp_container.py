@@ -7,10 +7,10 @@ Several C++ instances of a system in one process (``processes: shared``).
 --report-file FILE]] DESCRIPTION PARAMS_FILE INSTANCE... [--ros-args ...]``
 takes what :mod:`robmosys_runtime.container` takes, for the C++ instances of
 one host, and becomes (``exec``, the same process) the system package's
-component container (``lib/<system>/component_container``, robmosys_runtime's
-``src/component_container.cpp`` that the package builds) with everything it
-needs on its command line:
-the C++ program reads no JSON. The container is rclcpp_components' (its node,
+component container (``lib/<system>/component_container``: robmosys_runtime's
+``src/component_container.cpp``, which the package builds) with everything it
+needs on its command line, counted: the C++ program parses no JSON and no
+file. The container is rclcpp_components' (its node,
 ``<system>_container`` or ``<system>_<host>_container``, serves
 ``_container/load_node``), and makes the node of each instance itself with its
 component's factory, with the name, namespace, remappings and parameter file
