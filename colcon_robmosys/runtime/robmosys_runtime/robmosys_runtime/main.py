@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 import signal
 import threading
+import time
 from types import FrameType
 from typing import Any, Callable, List, Optional, Sequence
 
@@ -28,6 +29,8 @@ EXECUTORS = ('events', 'single-threaded', 'multi-threaded')
 
 #: seconds of each spin of an events executor (see :func:`spin`)
 EVENTS_SPIN_PERIOD = 3600.0
+#: seconds between two looks of a process's shutdown watch at its context (wake_at_shutdown)
+SHUTDOWN_WATCH_PERIOD = 0.25
 
 
 def executor_kind(nodes: Sequence[Node] = (), named: Optional[str] = None) -> str:
@@ -137,6 +140,8 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     executor = make_executor(executor_kind(nodes, executor_name), nodes)
     for node in nodes:
         executor.add_node(node)
+    threading.Thread(target=wake_at_shutdown, args=(executor,), daemon=True,
+                     name='shutdown watch').start()
     try:
         spin(executor)
     except (KeyboardInterrupt, ExternalShutdownException):
@@ -155,6 +160,24 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
             node.destroy_node()
         rclpy.try_shutdown()
     return 0
+
+
+def wake_at_shutdown(executor: Any, period: float = SHUTDOWN_WATCH_PERIOD) -> None:
+    """
+    Wake the executor once its context is shut down (SIGINT, SIGTERM), if it waits still.
+
+    rclpy's signal handling shuts the rcl context down from a thread of its
+    own and triggers the executors' signal guard conditions, and calls none of
+    the Python context's on_shutdown callbacks. A spin woken in between finds
+    the context still up and waits again, with nothing left to wake it: the
+    node ignored SIGINT or SIGTERM until SIGKILL (1 in 15 to 30 Ctrl-Cs of a
+    system under load, issue 28). This thread wakes it within ``period``.
+    """
+    while executor.context.ok():
+        time.sleep(period)
+    wake = getattr(executor, 'wake', None)
+    if wake is not None:
+        wake()
 
 
 def spin(executor: Any) -> None:
