@@ -39,9 +39,9 @@ from typing import Any, Callable, cast, Dict, List, Optional
 from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
 from rclpy.node import Node
 from robmosys_runtime.main import run_nodes
-from robmosys_runtime.processes import node_arguments, shared_arguments
+from robmosys_runtime.processes import node_arguments
 from robmosys_runtime.reports import Reporter
-from robmosys_runtime.told import write_whole
+from robmosys_runtime.told import shared_start, write_whole
 
 
 def node_factory(instance: Dict[str, Any], params_file: str) -> Callable[[], Node]:
@@ -109,24 +109,11 @@ def bring_up(instances: List[Dict[str, Any]], nodes: List[Node], reporter: Repor
 
 def main(argv: Optional[List[str]] = None) -> int:
     """Run the instances named on the command line; return the exit status."""
-    args = shared_arguments(list(sys.argv[1:] if argv is None else argv))
-    if args is None:
-        print('container: error: usage: container [--activate [--report-fd FD | --report-file '
-              'FILE]] DESCRIPTION PARAMS_FILE INSTANCE...', file=sys.stderr)
+    started = shared_start(list(sys.argv[1:] if argv is None else argv), 'container',
+                           'python_class', 'Python')
+    if started is None:
         return 2
-    if args.report_file is not None:
-        # the manager waits for the file only while this process lives
-        write_whole(f'{args.report_file}.started', str(os.getpid()))
-    with open(args.description_file, encoding='utf-8') as stream:
-        description = json.load(stream)
-    instances = {i['instance']: i for i in description['instances']}
-    unknown = [n for n in args.names if n not in instances or
-               not instances[n].get('python_class')]
-    if unknown:
-        print(f"container: error: not Python instances of the system: {', '.join(unknown)}",
-              file=sys.stderr)
-        return 2
-    chosen = [instances[n] for n in args.names]
+    args, description, chosen = started
     reporter = Reporter(description)
     return run_nodes([node_factory(i, args.params_file) for i in chosen],
                      executor_name=description.get('executors', {}).get('python'),

@@ -24,14 +24,12 @@ of 50 C++ instances: 1.64x to 1.73x, issue 28).
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 from typing import Any, Dict, List, Optional
 
-from robmosys_runtime.processes import (
-    container_program, node_arguments, shared_arguments, SharedArguments)
-from robmosys_runtime.told import write_whole
+from robmosys_runtime.processes import container_program, node_arguments, SharedArguments
+from robmosys_runtime.told import shared_start
 
 
 def container_node(package: str, host: str = '') -> str:
@@ -78,22 +76,12 @@ def program_arguments(description: Dict[str, Any], args: SharedArguments,
 
 def main(argv: Optional[List[str]] = None) -> int:
     """Become the component container of the instances named; return an exit status if not."""
-    args = shared_arguments(list(sys.argv[1:] if argv is None else argv))
-    if args is None:
-        print('cpp_container: error: usage: cpp_container [--activate [--report-fd FD | '
-              '--report-file FILE]] DESCRIPTION PARAMS_FILE INSTANCE...', file=sys.stderr)
+    # exec keeps the pid that shared_start writes for the manager
+    started = shared_start(list(sys.argv[1:] if argv is None else argv), 'cpp_container',
+                           'plugin', 'C++')
+    if started is None:
         return 2
-    if args.report_file is not None:
-        # the manager waits for the file only while this process lives (exec keeps the pid)
-        write_whole(f'{args.report_file}.started', str(os.getpid()))
-    with open(args.description_file, encoding='utf-8') as stream:
-        description = json.load(stream)
-    instances = {i['instance']: i for i in description['instances']}
-    unknown = [n for n in args.names if n not in instances or not instances[n].get('plugin')]
-    if unknown:
-        print(f"cpp_container: error: not C++ instances of the system: {', '.join(unknown)}",
-              file=sys.stderr)
-        return 2
+    args, description, _ = started
     command = program_arguments(description, args, container_program(description['package']))
     sys.stdout.flush()
     try:

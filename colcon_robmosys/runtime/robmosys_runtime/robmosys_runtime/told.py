@@ -23,9 +23,10 @@ import select
 import sys
 import threading
 import time
-from typing import Any, Dict, Iterable, List, Optional, Sequence
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
 
-from robmosys_runtime.processes import CPP_GROUP, PYTHON_GROUP, shared_cpp, shared_python
+from robmosys_runtime.processes import (
+    CPP_GROUP, PYTHON_GROUP, shared_arguments, shared_cpp, shared_python, SharedArguments)
 
 
 def tellers(description: Dict[str, Any], shared: Optional[bool]) -> Dict[str, List[str]]:
@@ -141,3 +142,33 @@ def write_whole(path: str, text: str) -> None:
     except OSError as error:
         # the manager asks the instances instead
         print(f'{path}: error: {error.strerror}', file=sys.stderr)
+
+
+def shared_start(argv: List[str], program: str, start: str, language: str
+                 ) -> Optional[Tuple[SharedArguments, Dict[str, Any], List[Dict[str, Any]]]]:
+    """
+    Return a shared process's arguments, the description and its instances, or None.
+
+    None after saying why: not such a command line, or names that are not
+    ``language`` instances of the system (``start``: the key that says how a
+    process creates an instance's node). With ``--report-file``, the process's
+    pid is written to ``<file>.started`` first: the manager waits for the file
+    only while that process lives.
+    """
+    args = shared_arguments(argv)
+    if args is None:
+        print(f'{program}: error: usage: {program} [--activate [--report-fd FD | '
+              '--report-file FILE]] DESCRIPTION PARAMS_FILE INSTANCE...', file=sys.stderr)
+        return None
+    if args.report_file is not None:
+        write_whole(f'{args.report_file}.started', str(os.getpid()))
+    with open(args.description_file, encoding='utf-8') as stream:
+        description = json.load(stream)
+    instances = {i['instance']: i for i in description['instances']}
+    unknown = [n for n in args.names if n not in instances or not instances[n].get(start)]
+    if unknown:
+        which = ', '.join(unknown)
+        print(f'{program}: error: not {language} instances of the system: {which}',
+              file=sys.stderr)
+        return None
+    return args, description, [instances[n] for n in args.names]
