@@ -299,8 +299,11 @@ class EventClient:
         if ended:
             self._cancel(goal_handle)
             return
-        goal_handle.get_result_async().add_done_callback(
-            lambda future: self._finished(handle, future))
+        # released meanwhile (see _cancel): no result to ask a client that is gone
+        _unless_destroyed(
+            self.client._client_handle,
+            lambda: goal_handle.get_result_async().add_done_callback(
+                lambda future: self._finished(handle, future)), None)
 
     def _event(self, handle: EventActivation, event: Any) -> None:
         with self._lock:

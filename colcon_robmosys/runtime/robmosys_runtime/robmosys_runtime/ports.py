@@ -212,7 +212,12 @@ class ActionClientPort:
         if goal_handle is None or not goal_handle.accepted:
             self._node.get_logger().warning(f'a goal of {self.name} was rejected')
             return
-        goal_handle.get_result_async().add_done_callback(self._finished)
+        # accepted while a cleanup released the port, in another thread: the
+        # client is gone, and asking it for the result raised in the executor,
+        # which ended the process (and every instance it held)
+        _unless_destroyed(
+            self.client._client_handle,
+            lambda: goal_handle.get_result_async().add_done_callback(self._finished), None)
 
     def _finished(self, future: Future) -> None:
         if self._on_result is not None and future.exception() is None:

@@ -3,6 +3,7 @@
 """QueryClient and ActionClientPort against real rclpy servers."""
 
 import threading
+import time
 
 from conftest import wait_until
 import pytest
@@ -48,6 +49,28 @@ def test_query_client_blocking_and_asynchronous(spinning):
     assert wait_until(lambda: answers)
     assert answers[0].int32_value == 1007
     client.destroy()
+
+
+def test_a_goal_accepted_while_the_port_is_released_ends_quietly(spinning):
+    # the acceptance of a goal sent asynchronously can come while a cleanup
+    # releases the port, in another thread: asking the client that is gone for
+    # the result raised in the executor, which ended the process (seen on
+    # Jazzy, a shared process of eight instances); made deterministic
+    _serve(spinning)
+    client_node = spinning.add(Node('client', context=spinning.context))
+    results = []
+    client = ActionClientPort(client_node, Fibonacci, 'fibonacci', results.append)
+    assert client.wait_for_server(timeout_sec=10)
+    accepted = client.client.send_goal_async(Fibonacci.Goal(order=2))
+    assert wait_until(accepted.done)
+    assert accepted.result().accepted
+    client.destroy()
+    # the executor lets go of the client's handle at its next wake: rclpy then
+    # destroys it, as it did under the late acceptance
+    spinning.executor.wake()
+    time.sleep(0.5)
+    client._accepted(accepted)  # the acceptance's callback, after the release
+    assert results == []
 
 
 def test_query_client_times_out_without_server(spinning):
