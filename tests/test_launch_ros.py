@@ -282,10 +282,11 @@ def test_a_shared_system_comes_up_through_its_launch_file_and_ctrl_c_ends_it_in_
         crowd_launched_built, domain_id, tmp_path):
     """<system>.launch.py runs the Python instances in one process, the C++ in a container.
 
-    The launch arguments reach the nodes of both as they reach a node of its
-    own (here namespace and an operator's file). Ctrl-C ends every process
-    within 5 s, beside another launched system, and launch never escalates to
-    SIGTERM or SIGKILL.
+    With the manager, they are plain processes: the launch imports no
+    launch_ros. The launch arguments reach the nodes of both as they reach a
+    node of its own (here namespace and an operator's file). Ctrl-C ends every
+    process within 5 s, beside another launched system, and launch never
+    escalates to SIGTERM or SIGKILL.
     """
     from colcon_robmosys.devtools.system import LifecycleDriver
     from test_process_layout import (
@@ -320,6 +321,12 @@ def test_a_shared_system_comes_up_through_its_launch_file_and_ctrl_c_ends_it_in_
                    b'crowd_system/component_container' in c for c in commands) == 1, commands
         # the launch, the Python instances, the container, the manager
         assert len(marked) == 4, commands
+        # every process is a plain one (the manager too, lib/crowd_system/bringup):
+        # the launch imported neither launch_ros nor rclpy before it started them
+        assert any(c.split(b'\0')[0].endswith(b'/lib/crowd_system/bringup') for c in commands), \
+            commands
+        maps = (Path('/proc') / str(run.proc.pid) / 'maps').read_text()
+        assert 'rclpy' not in maps, [line for line in maps.splitlines() if 'rclpy' in line]
         took, output = ctrl_c(run, env[MARKER])
         assert run.proc.wait(timeout=1) == 0, output
     assert took <= CTRL_C_BOUND, f'{took:.2f} s:\n{output}'

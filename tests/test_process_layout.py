@@ -83,7 +83,14 @@ def _shared_command(call: ast.Call) -> list[str]:
 def _shared_processes(launch: Path) -> dict[str, list[str]]:
     """Return module -> the command of the ExecuteProcess that runs it, of a launch file."""
     commands = [_shared_command(c) for c in _calls(launch, 'ExecuteProcess')]
-    return {ast.literal_eval(c[2]).rsplit('.', 1)[-1]: c for c in commands}
+    return {ast.literal_eval(c[2]).rsplit('.', 1)[-1]: c for c in commands
+            if c[0] == 'sys.executable'}
+
+
+def _imported(launch: Path) -> set[str]:
+    """Return the modules a launch file imports from."""
+    return {n.module for n in ast.walk(ast.parse(launch.read_text()))
+            if isinstance(n, ast.ImportFrom) and n.module}
 
 
 def test_a_shared_system_starts_processes_as_bringup_does(tmp_path):
@@ -115,12 +122,18 @@ def test_a_shared_system_starts_processes_as_bringup_does(tmp_path):
             assert cmd[-2:] == ["'--ros-args'", '*arguments.ros_arguments']
             assert [ast.literal_eval(e) for e in cmd[5:-2]] == instances
         if name == 'crowd_system.launch.py':
-            [manager] = _calls(launch, 'Node')
-            assert "arguments=['--attach', '--told-file', arguments.told_file, " \
-                '*arguments.manager]' in ast.unparse(manager)
-    # one instance alone: a process of its own
+            # the manager is a plain process too, lib/crowd_system/bringup
+            [manager] = [c for c in _calls(launch, 'ExecuteProcess')
+                         if _shared_command(c)[0] == 'arguments.bringup']
+            assert _shared_command(manager)[1:] == [
+                "'--attach'", "'--told-file'", 'arguments.told_file', '*arguments.manager']
+        # every process a plain one: launching them imports no launch_ros (nor rclpy)
+        assert not {m for m in _imported(launch) if m.startswith('launch_ros')}, name
+    # one instance alone: a process of its own, launch_ros's LifecycleNode
     [node] = read_launch_file(out / 'launch' / 'crowd_system.pub_cpp.nodes.launch.py', out)
     assert node.name == 'pub_cpp'
+    assert 'launch_ros.actions' in _imported(
+        out / 'launch' / 'crowd_system.pub_cpp.nodes.launch.py')
 
 
 def test_one_shared_instance_runs_in_the_shared_process_as_under_bringup(tmp_path):
@@ -134,8 +147,7 @@ def test_one_shared_instance_runs_in_the_shared_process_as_under_bringup(tmp_pat
     for name in ('crowd_system.launch.py', 'crowd_system.nodes.launch.py'):
         launch = out / 'launch' / name
         assert read_launch_file(launch, out) == []
-        [shared] = _calls(launch, 'ExecuteProcess')
-        assert "'pub_0'" in ast.unparse(shared)
+        assert _shared_processes(launch)['container'][-3] == "'pub_0'"
     # the file of the instance alone has no manager: a process of its own
     [node] = read_launch_file(out / 'launch' / 'crowd_system.pub_0.launch.py', out)
     assert node.name == 'pub_0'

@@ -185,8 +185,7 @@ def test_activate_file_follows_the_activation_model(generated, launch_file):
     if instance is None:
         # the system's own file: the system manager brings it up, from bringup.json
         source = (generated / package / 'launch' / name).read_text()
-        assert "executable='bringup',\n            arguments=['--attach', *arguments.manager]," \
-            in source
+        assert "cmd=[arguments.bringup, '--attach', *arguments.manager]," in source
         description = json.loads((generated / package / 'bringup.json').read_text())
         activate_after = {i['instance']: i['after'] for i in description['instances']
                           if i['managed']}
@@ -413,7 +412,8 @@ def test_a_system_on_two_hosts_has_launch_files_per_host(tmp_path):
     assert read_launch_file(nodes_file, out) == []
     assert re.search(r"'robmosys_runtime\.container',\s+arguments\.description, "
                      r"arguments\.params_file,\s+'planner',", nodes_file.read_text())
-    assert "executable='bringup'" in (launch / 'hosted_system.launch.py').read_text()
+    assert "cmd=[arguments.bringup, '--attach'," in \
+        (launch / 'hosted_system.launch.py').read_text()
     assert read_activate_after(launch / 'hosted_system.on_robot.launch.py') == {'arm': []}
     assert [n.name for n in read_launch_file(
         launch / 'hosted_system.on_robot.nodes.launch.py', out)] == ['arm']

@@ -21,11 +21,11 @@ import shutil
 import tempfile
 from typing import Any, Dict, List, Optional, Text, Tuple
 
-from ament_index_python.packages import get_package_share_directory
+from ament_index_python.packages import get_package_prefix, get_package_share_directory
 from launch.actions import DeclareLaunchArgument
 from launch.launch_context import LaunchContext
 from launch.substitution import Substitution
-from launch.substitutions import LaunchConfiguration
+from launch.substitutions import LaunchConfiguration, SubstitutionFailure
 from robmosys_runtime.arguments import (
     ARGUMENTS, LOG_LEVELS, moved, moved_description, normalized_namespace, parameters_file,
     sim_time, temporary)
@@ -56,6 +56,33 @@ class Moved(Substitution):
     def perform(self, context: LaunchContext) -> Text:
         """Return the name in the namespace; the root namespace ('') is that namespace."""
         return moved(namespace(context), self.name or '/')
+
+
+class Program(Substitution):
+    """
+    A program of a package, ``lib/<package>/<name>``: what ``ros2 run`` runs.
+
+    What launch_ros' ``Node(package=, executable=)`` finds, without
+    launch_ros: a launch file whose every process is started this way
+    imports no rclpy.
+    """
+
+    def __init__(self, package: str, name: str) -> None:
+        super().__init__()
+        self.package = package
+        self.name = name
+
+    def describe(self) -> Text:
+        """Return what it is, for launch's messages."""
+        return f'Program({self.package!r}, {self.name!r})'
+
+    def perform(self, context: LaunchContext) -> Text:
+        """Return the path of the program; fail if the package does not install it."""
+        path = os.path.join(get_package_prefix(self.package), 'lib', self.package, self.name)
+        if not os.access(path, os.X_OK):
+            raise SubstitutionFailure(
+                f"package '{self.package}' installs no program {self.name} ({path})")
+        return path
 
 
 #: (package, namespace, use_sim_time, operator's file) -> the file made for them
@@ -140,6 +167,8 @@ class SystemArguments:
         self.description = SystemDescription(package)
         #: the ``ros_arguments`` of every node's process
         self.ros_arguments: List[Any] = ['--log-level', LaunchConfiguration('log_level')]
+        #: the system manager, ``ros2 run <package> bringup``
+        self.bringup = Program(package, 'bringup')
         #: the system manager's options of the same meaning, one argument each
         self.manager: List[Any] = [[f"--{name.replace('_', '-')}=", LaunchConfiguration(name)]
                                    for name in ARGUMENTS]
