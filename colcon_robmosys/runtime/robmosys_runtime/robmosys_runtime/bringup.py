@@ -193,6 +193,7 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     if signalled.is_set():
         manager.stopping.set()
     status = 0
+    ended = False
     try:
         manager.start()
         while manager.activation.running() and not signalled.wait(0.02):
@@ -213,7 +214,7 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
             for step in manager.activation.bring_down(timeout=min(args.timeout, 10.0)):
                 print(f'bringup: {step}', flush=True)
     finally:
-        manager.processes.stop()
+        ended = manager.processes.stop()
         # nothing makes clients on the node any more, before it goes
         manager.activation.close()
         executor.shutdown()
@@ -222,6 +223,9 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
         spinner.join(10)
         node.destroy_node()
         rclpy.try_shutdown()
+    if not ended:
+        # a process that needed SIGKILL: the system did not come down cleanly
+        return 1
     return status if args.exit_on_failure else 0
 
 
@@ -345,5 +349,6 @@ def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file:
         while not stopping.wait(0.5):
             pass
     finally:
-        processes.stop()
-    return 0
+        ended = processes.stop()
+    # 1: a process needed SIGKILL
+    return 0 if ended else 1

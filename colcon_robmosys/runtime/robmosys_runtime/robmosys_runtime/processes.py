@@ -117,8 +117,12 @@ class Processes:
                     reported[name] = process
                     self.on_exit(name, code)
 
-    def stop(self, timeout: float = STOP_TIMEOUT) -> None:
-        """Ask every process to end (SIGINT), then kill what is left after timeout."""
+    def stop(self, timeout: float = STOP_TIMEOUT) -> bool:
+        """
+        Ask every process to end (SIGINT), then kill what is left after timeout.
+
+        :returns: whether every process ended of SIGINT, none needing SIGKILL
+        """
         self._stopping.set()
         for process in self._processes.values():
             if process.poll() is None:
@@ -134,6 +138,8 @@ class Processes:
                 # never expected: a process ends within a few seconds of SIGINT
                 say('error', f'{name} did not end within {timeout:g} s of SIGINT: SIGKILL')
                 self.kill()
+                return False
+        return True
 
     def kill(self) -> None:
         """End every process at once."""

@@ -29,6 +29,29 @@ def test_a_process_is_starting_then_running_then_exited():
     assert processes.state('laser') == 'exited'
 
 
+def test_stop_tells_whether_a_process_needed_sigkill(capfd):
+    # bringup exits 1 when it did: a demo or a smoke test that reads its exit
+    # status sees a bring-down that was not clean
+    polite = Processes(on_exit=None)
+    polite.start('laser', [sys.executable, '-c', 'import time; time.sleep(60)'])
+    assert polite.stop(timeout=10.0)
+    assert polite.state('laser') == 'exited'
+    deaf = Processes(on_exit=None)
+    deaf.start('planner', [sys.executable, '-c', 'import signal, sys, time\n'
+                           'signal.signal(signal.SIGINT, signal.SIG_IGN)\n'
+                           'print("ready", flush=True)\n'
+                           'time.sleep(60)'])
+    out = []
+
+    def ready():
+        out.append(capfd.readouterr().out)
+        return 'ready' in ''.join(out)
+    assert wait_until(ready, timeout=10)
+    assert not deaf.stop(timeout=0.5)
+    assert wait_until(lambda: deaf.state('planner') == 'exited')
+    assert 'planner did not end within 0.5 s of SIGINT: SIGKILL' in capfd.readouterr().err
+
+
 def _instance(name, package, **extra):
     return dict({'instance': name, 'package': package, 'executable': name, 'name': name,
                  'namespace': '', 'remappings': [], 'host': ''}, **extra)
