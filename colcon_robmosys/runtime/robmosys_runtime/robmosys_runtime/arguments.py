@@ -258,3 +258,22 @@ def _remove(path: str) -> None:
         os.remove(path)
     except OSError:
         pass
+
+
+def without_ros_args(argv: Sequence[str]) -> List[str]:
+    """
+    Return the arguments without their ROS arguments, as rclpy's remove_ros_args does.
+
+    ``--ros-args`` starts them, ``--`` or the next ``--ros-args`` ends them;
+    here without importing rclpy, which the instances are to start with first.
+    """
+    kept: List[str] = []
+    ros = False
+    for arg in argv:
+        if arg == '--ros-args':
+            ros = True
+        elif ros and arg == '--':
+            ros = False
+        elif not ros:
+            kept.append(arg)
+    return kept

@@ -9,7 +9,8 @@ what it comes after) and a ``bringup`` executable that calls :func:`main`. It
 starts every instance, brings the managed ones up (SystemActivation), reports
 which are active, which failed and why, which are held back by which failure;
 on SIGINT or SIGTERM it deactivates and cleans them up, those that came last
-first, stops the processes and exits 0. A second signal ends it at once.
+first, stops the processes and exits 0 (1 if one needed SIGKILL). A second
+signal ends it at once.
 While it runs, :class:`Manager` offers operators services and ``/diagnostics``,
 starts instances marked ``respawn`` again, and with ``--heartbeat`` notices a
 managed instance that stops answering.
@@ -23,12 +24,12 @@ import os
 import signal
 import sys
 import threading
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, Optional, Sequence, Tuple
 
 from ament_index_python.packages import get_package_share_directory
 from robmosys_runtime.arguments import (
     any_given, ArgumentError, ARGUMENTS, log_level, moved_description, node_values,
-    normalized_namespace, sim_time, temporary, written)
+    normalized_namespace, sim_time, temporary, without_ros_args, written)
 from robmosys_runtime.levels import Outcome, report
 from robmosys_runtime.locations import resolve_locations
 from robmosys_runtime.output import say
@@ -276,25 +277,6 @@ def check(description: Dict[str, Any], args: argparse.Namespace) -> int:
     for difference in sorted(differences, key=lambda d: (d.location, d.message)):
         print(difference.line(), flush=True)
     return 1 if differences else 0
-
-
-def without_ros_args(argv: Sequence[str]) -> List[str]:
-    """
-    Return the arguments without their ROS arguments, as rclpy's remove_ros_args does.
-
-    ``--ros-args`` starts them, ``--`` or the next ``--ros-args`` ends them;
-    here without importing rclpy, which the instances are to start with first.
-    """
-    kept: List[str] = []
-    ros = False
-    for arg in argv:
-        if arg == '--ros-args':
-            ros = True
-        elif ros and arg == '--':
-            ros = False
-        elif not ros:
-            kept.append(arg)
-    return kept
 
 
 def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file: str) -> int:

@@ -101,7 +101,7 @@ def test_a_failing_timer_callback_is_reported_once(monkeypatch):
 
 def test_ros_arguments_are_left_out_as_rclpy_leaves_them_out():
     from rclpy.utilities import remove_ros_args
-    from robmosys_runtime.bringup import without_ros_args
+    from robmosys_runtime.arguments import without_ros_args
     for argv in ([], ['--attach'],
                  ['--attach', '--ros-args', '-r', '__node:=x', '--log-level', 'warn'],
                  ['--ros-args', '-r', 'a:=b', '--', '--timeout', '3'],
