@@ -20,7 +20,11 @@ def test_colcon_test_runs_the_generated_packages_tests(test_workspace_built):
     for package in ('publisher', 'subscriber'):
         results = built.build / package / 'test_results' / package
         assert {p.name for p in results.iterdir()} >= {'flake8.xunit.xml', 'pep257.xunit.xml'}
-    summary = built.colcon('test-result', '--test-result-base', str(built.build), '--all',
-                           '--verbose', timeout=60)
-    assert summary.returncode == 0, summary.stdout + summary.stderr
-    assert ' 0 errors, 0 failures' in summary.stdout, summary.stdout
+    # the results of these packages only: another test runs the tests of other
+    # packages of the same build (test_bringup's smoke tests) meanwhile; a C++
+    # package has none where rclcpp is not installed (colcon skips it)
+    for package in [p for p in packages if (built.build / p).is_dir()]:
+        summary = built.colcon('test-result', '--test-result-base', str(built.build / package),
+                               '--all', '--verbose', timeout=60)
+        assert summary.returncode == 0, summary.stdout + summary.stderr
+        assert ' 0 errors, 0 failures' in summary.stdout, (package, summary.stdout)

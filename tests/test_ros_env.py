@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+import socket
 import subprocess
 import sys
 import time
@@ -75,6 +76,29 @@ def test_free_domain_ids_are_distinct_and_in_range() -> None:
     ids = [ros_env.free_domain_id() for _ in range(5)]
     assert len(set(ids)) == 5
     assert all(1 <= i <= 101 for i in ids)
+
+
+def test_a_free_domain_id_is_never_one_ros_2_test_isolation_takes() -> None:
+    # `colcon test` of a generated smoke test runs it under ament_cmake_ros's
+    # isolation, which sets a ROS_DOMAIN_ID of its own choosing: it must not be
+    # the domain of a system another test runs (CI: two managers, one domain)
+    ros_env.free_domain_id()
+    held = set(ros_env._domain_locks)
+    for domain_id in held:
+        for address in ('127.0.0.1', ''):
+            with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as taking:
+                with pytest.raises(OSError):
+                    taking.bind((address, 32768 + domain_id))
+    isolated = Path(sys.prefix) / 'lib' / 'rmw_test_fixture_implementation' / 'run_rmw_isolated'
+    if not isolated.is_file():
+        pytest.skip(f'no {isolated.name} here (Kilted has it): the ports are checked above')
+    chosen = set()
+    for _ in range(20):
+        result = ros_env.run([str(isolated), 'sh', '-c', 'echo "$ROS_DOMAIN_ID"'],
+                             env=ros_env.loopback_env(0), timeout=60)
+        assert result.returncode == 0, result.stdout + result.stderr
+        chosen.add(int(result.stdout.split()[-1]))
+    assert not chosen & held, (chosen, held)
 
 
 def test_workspace_env_sources_local_setup(tmp_path: Path) -> None:

@@ -18,6 +18,7 @@ import itertools
 import os
 from pathlib import Path
 import signal
+import socket
 import subprocess
 import sys
 import tempfile
@@ -42,7 +43,12 @@ _DOMAIN_IDS = 101
 #: how many of them one process holds at most
 _HELD_DOMAIN_IDS = 16
 _domain_counter = itertools.count()
-_domain_locks: dict[int, IO[str]] = {}
+_domain_locks: dict[int, tuple[IO[str], socket.socket]] = {}
+#: ROS 2's own test isolation holds a domain id by binding this port plus the id:
+#: ament_cmake_ros's run_rmw_isolated (Kilted's rmw_test_fixture, 127.0.0.1) and
+#: domain_coordinator (Jazzy, every address); `colcon test` of a generated smoke test
+#: runs under it, with an id of its choosing in 1..100, whatever ROS_DOMAIN_ID says
+_ISOLATION_PORT_BASE = 32768
 
 
 def ros_prefix() -> Path:
@@ -127,9 +133,13 @@ def free_domain_id() -> int:
 
     The sequence starts at an offset taken from the pid and steps by a counter, so
     concurrent pytest processes start apart; a lock file per id (held until this
-    process exits) makes sure they never share one. A process holds at most
-    16 ids and then reuses its own in turn, which is safe because its earlier
-    tests stopped their processes, and leaves the others to other processes.
+    process exits) makes sure they never share one. The id is held the way ROS 2's
+    test isolation holds one too, by its port (``_ISOLATION_PORT_BASE``): a smoke
+    test under `colcon test` in another test never lands in a domain a test here
+    runs a system in (CI saw one manager take the other's nodes down). A process
+    holds at most 16 ids and then reuses its own in turn, which is safe because
+    its earlier tests stopped their processes, and leaves the others to other
+    processes.
     """
     lock_dir = Path(tempfile.gettempdir()) / 'colcon-robmosys-domain-ids'
     lock_dir.mkdir(exist_ok=True)
@@ -147,7 +157,15 @@ def free_domain_id() -> int:
         except OSError:
             handle.close()
             continue
-        _domain_locks[domain_id] = handle
+        port = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+        try:
+            # every address: it excludes a bind of 127.0.0.1 and one of all
+            port.bind(('', _ISOLATION_PORT_BASE + domain_id))
+        except OSError:
+            port.close()
+            handle.close()
+            continue
+        _domain_locks[domain_id] = (handle, port)
         return domain_id
     raise RuntimeError(f'all ROS domain ids 1..{_DOMAIN_IDS} are held by other processes')
 
