@@ -194,7 +194,6 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     if signalled.is_set():
         manager.stopping.set()
     status = 0
-    ended = False
     try:
         manager.start()
         while manager.activation.running() and not signalled.wait(0.02):

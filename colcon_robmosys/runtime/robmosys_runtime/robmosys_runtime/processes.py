@@ -131,15 +131,18 @@ class Processes:
                 except ProcessLookupError:
                     pass
         deadline = time.monotonic() + timeout
+        late = []
         for name, process in self._processes.items():
             try:
                 process.wait(max(0.0, deadline - time.monotonic()))
             except subprocess.TimeoutExpired:
-                # never expected: a process ends within a few seconds of SIGINT
-                say('error', f'{name} did not end within {timeout:g} s of SIGINT: SIGKILL')
-                self.kill()
-                return False
-        return True
+                late.append(name)
+        # never expected: a process ends within a few seconds of SIGINT
+        for name in late:
+            say('error', f'{name} did not end within {timeout:g} s of SIGINT: SIGKILL')
+        if late:
+            self.kill()
+        return not late
 
     def kill(self) -> None:
         """End every process at once."""
