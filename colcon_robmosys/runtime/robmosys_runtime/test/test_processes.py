@@ -37,19 +37,23 @@ def test_stop_tells_whether_a_process_needed_sigkill(capfd):
     assert polite.stop(timeout=10.0)
     assert polite.state('laser') == 'exited'
     deaf = Processes(on_exit=None)
-    deaf.start('planner', [sys.executable, '-c', 'import signal, sys, time\n'
-                           'signal.signal(signal.SIGINT, signal.SIG_IGN)\n'
-                           'print("ready", flush=True)\n'
-                           'time.sleep(60)'])
+    for name in ('planner', 'mapper'):
+        deaf.start(name, [sys.executable, '-c', 'import signal, sys, time\n'
+                          'signal.signal(signal.SIGINT, signal.SIG_IGN)\n'
+                          'print("ready", flush=True)\n'
+                          'time.sleep(60)'])
     out = []
 
     def ready():
         out.append(capfd.readouterr().out)
-        return 'ready' in ''.join(out)
+        return ''.join(out).count('ready') == 2
     assert wait_until(ready, timeout=10)
     assert not deaf.stop(timeout=0.5)
-    assert wait_until(lambda: deaf.state('planner') == 'exited')
-    assert 'planner did not end within 0.5 s of SIGINT: SIGKILL' in capfd.readouterr().err
+    assert wait_until(lambda: deaf.state('planner') == deaf.state('mapper') == 'exited')
+    # each one named
+    said = capfd.readouterr().err
+    assert 'planner did not end within 0.5 s of SIGINT: SIGKILL' in said
+    assert 'mapper did not end within 0.5 s of SIGINT: SIGKILL' in said
 
 
 def _instance(name, package, **extra):
