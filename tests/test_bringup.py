@@ -134,8 +134,9 @@ def test_an_instance_that_never_answers_is_reported_within_its_timeout(
                   '--start-timeout', '20') as bringup:
         assert bringup.proc.wait(timeout=120) == 1, bringup.output()
         output = bringup.output()
-    assert 'bringup: error: instance level_sensor did not appear within 20 s; not '\
-        'activated because of it: level_watcher' in output, output
+    assert 'bringup: error: instance level_sensor did not appear within 20 s (no node '\
+        '/level_sensor in the ROS graph); not activated because of it: level_watcher' \
+        in output, output
     assert 'bringup: 6 of 8 managed instances active' in output, output
     assert_no_traceback(output)
 

@@ -148,11 +148,30 @@ class LifecycleCalls:
             if self._stop.wait(0.02) or not self._node.context.ok() or self._failed(name):
                 raise Stopped()
             if time.monotonic() > deadline:
-                raise Failed(f'did not appear within {timeout:g} s')
+                absence = self._absence(name, service)
+                raise Failed(f'did not appear within {timeout:g} s ({absence})')
         if service == 'get_state':
             with self._lock:
                 self._unseen.pop(name, None)
         return client
+
+    def _absence(self, name: str, service: str) -> str:
+        """
+        Tell what the ROS graph has of an instance whose service was not seen.
+
+        A node missing from the graph was not made, or its participant was not
+        discovered; a node there without the service is no lifecycle node; a
+        service there that this client did not match lost its DDS matching.
+        """
+        fqn = self._instances[name]
+        namespace, _, node_name = fqn.rpartition('/')
+        namespace = namespace or '/'
+        if (node_name, namespace) not in self._node.get_node_names_and_namespaces():
+            return f'no node {fqn} in the ROS graph'
+        services = self._node.get_service_names_and_types_by_node(node_name, namespace)
+        if f'{fqn}/{service}' not in {s for s, _ in services}:
+            return f'its node is in the ROS graph, without a {service} service'
+        return f'its {service} service is in the ROS graph, but did not match this client'
 
     def timeout_of(self, name: str) -> float:
         """Return the seconds each transition of an instance may take."""

@@ -7,6 +7,7 @@ import time
 
 from rclpy.lifecycle import Node as LifecycleNode
 from rclpy.lifecycle import TransitionCallbackReturn
+from rclpy.node import Node
 from robmosys_runtime.activation import SystemActivation
 
 SUCCESS = TransitionCallbackReturn.SUCCESS
@@ -100,8 +101,22 @@ def test_an_instance_that_never_appears_is_reported(spinning):
         report=lambda level, text: None)
     activation.start()
     outcome = activation.wait(30)
-    assert outcome.failed == {'absent': 'did not appear within 1 s'}
+    assert outcome.failed == {
+        'absent': 'did not appear within 1 s (no node /system/absent in the ROS graph)'}
     assert outcome.active == ['here']
+
+
+def test_an_instance_that_is_no_lifecycle_node_is_told_apart(spinning):
+    # a plain node where the model has a managed instance: it is in the graph,
+    # its lifecycle services are not
+    spinning.add(Node('plain', namespace='/system', context=spinning.context))
+    driver = spinning.add(LifecycleNode('driver', context=spinning.context))
+    activation = SystemActivation(driver, {'plain': '/system/plain'}, {}, timeout=1.0,
+                                  report=lambda level, text: None)
+    activation.start()
+    outcome = activation.wait(30)
+    assert outcome.failed == {'plain': 'did not appear within 1 s (its node is in the ROS '
+                                       'graph, without a get_state service)'}
 
 
 def test_a_stopped_bring_up_ends_quietly(spinning):
