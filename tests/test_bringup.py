@@ -135,7 +135,7 @@ def test_an_instance_that_never_answers_is_reported_within_its_timeout(
         assert bringup.proc.wait(timeout=120) == 1, bringup.output()
         output = bringup.output()
     assert 'bringup: error: instance level_sensor did not appear within 20 s (no node '\
-        '/level_sensor in the ROS graph); not activated because of it: level_watcher' \
+        '/examples/level_sensor in the ROS graph); not activated because of it: level_watcher' \
         in output, output
     assert 'bringup: 6 of 8 managed instances active' in output, output
     assert_no_traceback(output)
@@ -394,7 +394,13 @@ def test_shared_processes_run_the_python_instances_in_one_process(test_workspace
         bringup.proc.send_signal(signal.SIGINT)
         assert bringup.proc.wait(timeout=60) == 0, bringup.output()
         output = bringup.output()
+    # the process brought its instances down itself, in the order of the model
+    # reversed, and told bringup each step
     assert len(re.findall(r'bringup: cleanup \w+', output)) == 8, output
+    order = re.findall(r'bringup: deactivate (\w+)', output)
+    for after, before in (('add_client', 'add_server'), ('level_watcher', 'level_sensor'),
+                          ('fibonacci_client', 'fibonacci_server')):
+        assert order.index(after) < order.index(before), output
     assert_no_traceback(output)
 
 

@@ -28,7 +28,7 @@ import pytest
 import yaml
 
 from colcon_robmosys.devtools.ros_env import background, free_domain_id
-from colcon_robmosys.devtools.system import wait_until
+from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
 from colcon_robmosys.generators import generate_package, plan_package
 from colcon_robmosys.mapping.launch import SHARED_FROM
 from conftest import (assert_no_traceback, BuiltWorkspace, colcon, requires_ros,
@@ -270,3 +270,46 @@ def test_ctrl_c_of_bringup_ends_20_shared_instances_within_bounds_under_load(
     assert 'SIGKILL' not in output, output
     assert_no_traceback(output)
     assert len(re.findall(r'bringup: cleanup \w+', output)) == 20, output
+
+
+@pytest.mark.integration
+@requires_ros
+def test_the_shared_process_of_a_launch_brings_its_instances_down_at_sigint(
+        crowd_built, domain_id, tmp_path):
+    """What ros2 launch's Ctrl-C does to the shared process: it brings its nodes down itself."""
+    from lifecycle_msgs.msg import TransitionEvent
+    share = crowd_built.share('crowd_system')
+    description = json.loads((share / 'bringup.json').read_text())
+    names = [i['instance'] for i in description['instances']]
+    told = tmp_path / 'told.json'
+    # the command of crowd_system.launch.py's shared process (test_a_shared_system_...)
+    command = [sys.executable, '-m', 'robmosys_runtime.container', '--activate',
+               '--report-file', str(told), str(share / 'bringup.json'),
+               str(share / description['params_file']), *names, '--ros-args']
+    watched = ['pub_0', 'sub_0', 'pub_9']
+    events: dict[str, list[str]] = {name: [] for name in watched}
+    with background(command, env=crowd_built.env(domain_id), stop_timeout=30) as shared, \
+            LifecycleDriver(domain_id) as driver:
+        for name in watched:
+            driver.node.create_subscription(
+                TransitionEvent, f'/{name}/transition_event',
+                lambda event, name=name: events[name].append(event.goal_state.label), 10)
+        assert wait_until(told.exists, timeout=120), shared.output()
+        assert json.loads(told.read_text()) == dict.fromkeys(names, 'active')
+        topics = [f'/{name}/transition_event' for name in watched]
+        assert wait_until(lambda: all(driver.node.count_publishers(t) for t in topics),
+                          timeout=30), shared.output()
+        shared.proc.send_signal(signal.SIGINT)
+        assert shared.proc.wait(timeout=30) == 0, shared.output()
+        # the transition events it published, taken in: those of the bring-up
+        # may come before (the subscription matched in time), then the bring-down's
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline and \
+                any(labels[-1:] != ['unconfigured'] for labels in events.values()):
+            driver.executor.spin_once(timeout_sec=0.1)
+        output = shared.output()
+    down = {name: labels[len(labels) - labels[::-1].index('active'):]
+            if 'active' in labels else labels for name, labels in events.items()}
+    assert down == dict.fromkeys(
+        watched, ['deactivating', 'inactive', 'cleaningup', 'unconfigured']), (events, output)
+    assert_no_traceback(output)

@@ -33,8 +33,9 @@ from robmosys_runtime.arguments import (
 from robmosys_runtime.levels import Outcome, report
 from robmosys_runtime.locations import resolve_locations
 from robmosys_runtime.output import say
-from robmosys_runtime.processes import NotInstalled, plan_processes, Processes
-from robmosys_runtime.told import read_told, read_told_file, tellers, tells_all, told_file
+from robmosys_runtime.processes import NotInstalled, plan_processes, Processes, PYTHON_GROUP
+from robmosys_runtime.told import (
+    brings_itself_down, read_steps, read_told, read_told_file, tellers, tells_all, told_file)
 
 # rclpy is imported once the instances are starting: they start it too, in
 # parallel (see main)
@@ -136,6 +137,8 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, on_signal)
     told: Optional[Dict[str, str]] = None
+    #: the pipe where the shared process that brings itself down tells its steps
+    steps: Optional[int] = None
     printed = False
     if not args.attach:
         # the shared processes that bring up every managed instance tell them
@@ -156,9 +159,11 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
                             pass_fds=[pipes[group][1]] if group in pipes else [])
         for _, writing in pipes.values():
             os.close(writing)
+        if brings_itself_down(description, args.processes):
+            steps = pipes[PYTHON_GROUP][0]
         if pipes:
             told = read_told([r for r, _ in pipes.values()], args.start_timeout + args.timeout,
-                             signalled)
+                             signalled, keep_open=[steps] if steps is not None else [])
     elif args.told_file and tells_all(description, args.processes):
         # the launch file started the shared processes, which write the files
         told = read_told_file([told_file(args.told_file, g)
@@ -210,11 +215,17 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
         while not signalled.wait(0.5):
             pass
         manager.activation.stop()
-        if not args.attach:
+        if steps is not None:
+            manager.processes.interrupt(PYTHON_GROUP)
+            for level, text in read_steps(steps, wait=min(args.timeout, 10.0)):
+                say(level, text)
+        elif not args.attach:
             for step in manager.activation.bring_down(timeout=min(args.timeout, 10.0)):
                 print(f'bringup: {step}', flush=True)
     finally:
         ended = manager.processes.stop()
+        if steps is not None:
+            os.close(steps)
         # nothing makes clients on the node any more, before it goes
         manager.activation.close()
         executor.shutdown()

@@ -26,6 +26,13 @@ through two transitions of the lifecycle services, nor asks each its state
 (each call waiting for the service of another process to be discovered was
 what the manager added to the floor, issue 28). An instance that fails a
 transition here is left where it is: the manager takes it up, and reports it.
+
+With ``--activate`` it also brings its instances down itself at SIGINT or
+SIGTERM (:func:`bring_down`): deactivates, then cleans up, each, the last
+activated first, before its nodes go; ``bringup`` reads each step on the
+same pipe, and need not discover any lifecycle service to bring the system
+down (which took 3 s right after it joined the graph, issue 28). A launch's
+Ctrl-C brings the system down the same way.
 """
 
 from __future__ import annotations
@@ -34,7 +41,7 @@ import importlib
 import json
 import os
 import sys
-from typing import Any, Callable, cast, Dict, List, Optional
+from typing import Any, Callable, cast, Dict, IO, List, Optional
 
 from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
 from rclpy.node import Node
@@ -83,28 +90,76 @@ def activate_in_order(instances: List[Dict[str, Any]], nodes: List[Node],
 
 
 def bring_up(instances: List[Dict[str, Any]], nodes: List[Node], reporter: Reporter,
-             report_fd: Optional[int] = None, report_file: Optional[str] = None) -> None:
+             report_fd: Optional[int] = None,
+             report_file: Optional[str] = None) -> Optional[IO[str]]:
     """
     Activate what can be (:func:`activate_in_order`); tell the manager the states known.
 
     Those activated are active, those not touched unconfigured; one that
     failed a transition is left out: the manager asks it its state. The
-    states are published, and written to ``report_fd`` if given, which is
-    then closed, and to ``report_file`` if given (whole, or not at all).
+    states are published, and written to ``report_fd`` if given, and to
+    ``report_file`` if given (whole, or not at all). Return ``report_fd`` as
+    a stream, left open for :func:`bring_down`'s steps; None without it.
     """
     untouched: List[str] = []
     active = activate_in_order(instances, nodes, untouched)
     states = {**dict.fromkeys(untouched, 'unconfigured'), **dict.fromkeys(active, 'active')}
     reporter.brought_up(states)
     line = json.dumps(states) + '\n'
-    if report_fd is not None:
-        try:
-            with os.fdopen(report_fd, 'w', encoding='utf-8') as stream:
-                stream.write(line)
-        except OSError:
-            pass  # bringup stopped reading: it asks the instances
+    stream = None if report_fd is None else os.fdopen(report_fd, 'w', encoding='utf-8')
+    stream = _tell(stream, line)
     if report_file is not None:
         write_whole(report_file, line)
+    return stream
+
+
+def bring_down(instances: List[Dict[str, Any]], nodes: List[Node],
+               steps: Optional[IO[str]] = None) -> None:
+    """
+    Deactivate, then clean up, every managed instance here, the last activated first.
+
+    What ``bringup`` does through the lifecycle services (the model's order
+    reversed), done in this process, whatever brought the instances up: one
+    it finds unconfigured is left so. Each step done is written to steps, a
+    line each as ``bringup`` prints it (``deactivate <instance>``, ``cleanup
+    <instance>``, ``error: ...`` for a transition that failed), which is then
+    closed.
+    """
+    for instance, node in reversed(list(zip(instances, nodes))):
+        if not instance.get('managed') or not instance.get('lifecycle', True):
+            continue
+        lifecycle = cast(LifecycleNode, node)
+        # rclpy's own reading of it (LifecycleNode.trigger_shutdown, 7.1 and 9.1)
+        state = lifecycle._state_machine.current_state[1]
+        name = instance['instance']
+        for before, trigger, verb in (('active', lifecycle.trigger_deactivate, 'deactivate'),
+                                      ('inactive', lifecycle.trigger_cleanup, 'cleanup')):
+            if state != before:
+                continue
+            if trigger() != TransitionCallbackReturn.SUCCESS:
+                now = lifecycle._state_machine.current_state[1]
+                steps = _tell(steps, f'error: instance {name} could not be brought down: '
+                                     f'failed to {verb} (it is {now})\n')
+                break
+            steps = _tell(steps, f'{verb} {name}\n')
+            state = lifecycle._state_machine.current_state[1]
+    if steps is not None:
+        try:
+            steps.close()
+        except OSError:
+            pass  # bringup stopped reading
+
+
+def _tell(stream: Optional[IO[str]], line: str) -> Optional[IO[str]]:
+    """Write a line to bringup's pipe; return the stream, None once bringup stopped reading."""
+    if stream is None:
+        return None
+    try:
+        stream.write(line)
+        stream.flush()
+    except OSError:
+        return None  # bringup stopped reading: it asks the instances
+    return stream
 
 
 def main(argv: Optional[List[str]] = None) -> int:
@@ -115,13 +170,18 @@ def main(argv: Optional[List[str]] = None) -> int:
         return 2
     args, description, chosen = started
     reporter = Reporter(description)
-    return run_nodes([node_factory(i, args.params_file) for i in chosen],
-                     executor_name=description.get('executors', {}).get('python'),
-                     args=['container', *args.ros_arguments] if args.ros_arguments else None,
-                     before_spin=(lambda nodes: bring_up(chosen, nodes, reporter, args.report_fd,
-                                                         args.report_file))
-                     if args.activate else None,
-                     unspun=[reporter.make] if args.activate else ())
+    factories = [node_factory(i, args.params_file) for i in chosen]
+    executor_name = description.get('executors', {}).get('python')
+    ros_args = ['container', *args.ros_arguments] if args.ros_arguments else None
+    if not args.activate:
+        return run_nodes(factories, executor_name=executor_name, args=ros_args)
+    steps: List[Optional[IO[str]]] = []
+    return run_nodes(
+        factories, executor_name=executor_name, args=ros_args,
+        before_spin=lambda nodes: steps.append(
+            bring_up(chosen, nodes, reporter, args.report_fd, args.report_file)),
+        unspun=[reporter.make],
+        bring_down=lambda nodes: bring_down(chosen, nodes, steps[0] if steps else None))
 
 
 if __name__ == '__main__':

@@ -5,6 +5,7 @@
 from __future__ import annotations
 
 import os
+import select
 import signal
 import threading
 import time
@@ -16,6 +17,7 @@ from rclpy.exceptions import InvalidHandle
 from rclpy.executors import Executor, ExternalShutdownException, MultiThreadedExecutor
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
+from rclpy.signals import SignalHandlerOptions
 from rclpy.task import Future
 
 
@@ -31,6 +33,10 @@ EXECUTORS = ('events', 'single-threaded', 'multi-threaded')
 EVENTS_SPIN_PERIOD = 3600.0
 #: seconds between two looks of a process's shutdown watch at its context (wake_at_shutdown)
 SHUTDOWN_WATCH_PERIOD = 0.25
+#: seconds after a first SIGINT or SIGTERM in which another is the same request:
+#: a terminal's Ctrl-C reaches every process of its group, and ros2 launch then
+#: sends each its own SIGINT. A later one ends the process at once.
+SAME_REQUEST = 1.0
 
 
 def executor_kind(nodes: Sequence[Node] = (), named: Optional[str] = None) -> str:
@@ -77,6 +83,8 @@ def executor_threads(nodes: Sequence[Node] = ()) -> int:
 
 #: set once rclpy handles SIGINT (see _interrupted)
 _rclpy_handles_sigint = threading.Event()
+#: when this process was first asked to end (SIGINT or SIGTERM), by time.monotonic()
+_asked_to_end: List[float] = []
 
 
 def _interrupted(signum: int, frame: Optional[FrameType]) -> None:
@@ -91,12 +99,24 @@ def _interrupted(signum: int, frame: Optional[FrameType]) -> None:
     """
     if not _rclpy_handles_sigint.is_set():
         signal.default_int_handler(signum, frame)
+    elif not _asked_to_end:
+        _asked_to_end.append(time.monotonic())
+
+
+def _asked(signum: int, frame: Optional[FrameType]) -> None:
+    """SIGINT or SIGTERM where the process brings its nodes down itself: noted, once."""
+    if not _asked_to_end:
+        _asked_to_end.append(time.monotonic())
+    else:
+        _exit_at_once(signum, frame)
 
 
 def _exit_at_once(signum: int, frame: Optional[FrameType]) -> None:
     # a second SIGINT or SIGTERM while the node ends (an activity or a goal
-    # still running): the user wants the process gone now
-    os._exit(128 + signum)
+    # still running): the user wants the process gone now, unless it is the
+    # same request come twice (SAME_REQUEST)
+    if not _asked_to_end or time.monotonic() - _asked_to_end[0] >= SAME_REQUEST:
+        os._exit(128 + signum)
 
 
 def run(node_factory: Callable[[], Node], args: Optional[List[str]] = None) -> int:
@@ -112,7 +132,8 @@ def run(node_factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
 def run_nodes(node_factories: Sequence[Callable[[], Node]],
               args: Optional[List[str]] = None, executor_name: Optional[str] = None,
               before_spin: Optional[Callable[[List[Node]], Any]] = None,
-              unspun: Sequence[Callable[[], Node]] = ()) -> int:
+              unspun: Sequence[Callable[[], Node]] = (),
+              bring_down: Optional[Callable[[List[Node]], Any]] = None) -> int:
     """
     Spin several nodes in one process until SIGINT or SIGTERM, then shut down cleanly.
 
@@ -125,11 +146,22 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
         callback is.
     :param unspun: nodes made first, before the others, and never spun (they
         have no callback: they publish), destroyed with the others.
+    :param bring_down: run once with the nodes at SIGINT or SIGTERM, while they
+        are still spun and the context is up, so that it can take them through
+        their transitions (:func:`spin_until_signal`); the process then ends.
     Return the exit status (0).
     """
     signal.signal(signal.SIGINT, _interrupted)
-    rclpy.init(args=args)
-    _rclpy_handles_sigint.set()
+    if bring_down is None:
+        rclpy.init(args=args)
+        _rclpy_handles_sigint.set()
+    else:
+        # the signals are this process's: rclpy's handler would shut the
+        # context down at once, and no transition could be published after it.
+        # One that comes while the nodes are made is taken once they spin.
+        rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+        for signum in (signal.SIGINT, signal.SIGTERM):
+            signal.signal(signum, _asked)
     # Made before the executor spins: served while the others were made, the
     # first nodes of a 50-node process came up later, not sooner (each node
     # added woke the executor to gather every entity again, under the GIL)
@@ -143,7 +175,10 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     threading.Thread(target=wake_at_shutdown, args=(executor,), daemon=True,
                      name='shutdown watch').start()
     try:
-        spin(executor)
+        if bring_down is None:
+            spin(executor)
+        else:
+            spin_until_signal(executor, lambda: bring_down(nodes))
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception:  # noqa: B902 - re-raised unless shutting down
@@ -206,6 +241,51 @@ def spin(executor: Any) -> None:
         except InvalidHandle:
             if not executor.context.ok():
                 raise
+
+
+def spin_until_signal(executor: Any, bring_down: Callable[[], Any]) -> None:
+    """
+    Spin until SIGINT or SIGTERM, then call bring_down() and shut the context down.
+
+    Python runs a signal's handler in the main thread only, between two of
+    its instructions, never while that thread waits in rcl: the executor
+    spins in a thread of its own, and the main thread waits for the signal
+    (``signal.set_wakeup_fd``) or for the spin to end (a callback raised,
+    or the context was shut down): what ended the spin is raised here.
+    """
+    reading, writing = os.pipe()
+    os.set_blocking(writing, False)
+    ended: List[BaseException] = []
+    done = threading.Event()
+
+    def spin_here() -> None:
+        try:
+            spin(executor)
+        except BaseException as failure:  # noqa: B902 - raised in the main thread
+            ended.append(failure)
+        finally:
+            done.set()
+            os.write(writing, b'.')
+
+    previous = signal.set_wakeup_fd(writing)
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, _asked)
+    spinner = threading.Thread(target=spin_here, name='spin', daemon=True)
+    spinner.start()
+    try:
+        while not _asked_to_end and not done.is_set():
+            select.select([reading], [], [])
+            os.read(reading, 512)
+        if _asked_to_end and not done.is_set():
+            bring_down()
+            rclpy.try_shutdown(context=executor.context)
+        spinner.join()
+    finally:
+        signal.set_wakeup_fd(previous)
+        os.close(reading)
+        os.close(writing)
+    if ended:
+        raise ended[0]
 
 
 def _spin_events(executor: Any) -> None:

@@ -18,7 +18,7 @@ import subprocess
 import sys
 import threading
 import time
-from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Set, Tuple
 
 from ament_index_python.packages import get_package_prefix, PackageNotFoundError
 from robmosys_runtime.output import say
@@ -75,6 +75,8 @@ class Processes:
         #: called with (name, exit code) once a process ends, while watched
         self.on_exit = on_exit
         self._stopping = threading.Event()
+        #: the processes asked to end already (interrupt): asked once only
+        self._interrupted: Set[str] = set()
         self._watch = threading.Thread(target=self._watch_loop, daemon=True)
 
     def start(self, name: str, args: Sequence[str], pass_fds: Sequence[int] = ()) -> None:
@@ -117,6 +119,21 @@ class Processes:
                     reported[name] = process
                     self.on_exit(name, code)
 
+    def interrupt(self, name: str) -> None:
+        """
+        Ask one process to end (SIGINT) now, the system being stopped; stop() waits for it.
+
+        A second SIGINT would tell it to end at once: it gets none from stop().
+        """
+        self._stopping.set()
+        self._interrupted.add(name)
+        process = self._processes.get(name)
+        if process is not None and process.poll() is None:
+            try:
+                os.killpg(process.pid, signal.SIGINT)
+            except ProcessLookupError:
+                pass
+
     def stop(self, timeout: float = STOP_TIMEOUT) -> bool:
         """
         Ask every process to end (SIGINT), then kill what is left after timeout.
@@ -124,12 +141,9 @@ class Processes:
         :returns: whether every process ended of SIGINT, none needing SIGKILL
         """
         self._stopping.set()
-        for process in self._processes.values():
-            if process.poll() is None:
-                try:
-                    os.killpg(process.pid, signal.SIGINT)
-                except ProcessLookupError:
-                    pass
+        for name in self._processes:
+            if name not in self._interrupted:
+                self.interrupt(name)
         deadline = time.monotonic() + timeout
         late = []
         for name, process in self._processes.items():

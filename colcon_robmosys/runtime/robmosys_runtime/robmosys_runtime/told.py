@@ -23,7 +23,7 @@ import select
 import sys
 import threading
 import time
-from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
+from typing import Any, Dict, Iterable, Iterator, List, Optional, Sequence, Tuple
 
 from robmosys_runtime.processes import (
     CPP_GROUP, PYTHON_GROUP, shared_arguments, shared_cpp, shared_python, SharedArguments)
@@ -48,15 +48,53 @@ def tells_all(description: Dict[str, Any], shared: Optional[bool]) -> bool:
     return bool(managed) and managed <= telling
 
 
+def brings_itself_down(description: Dict[str, Any], shared: Optional[bool]) -> bool:
+    """
+    Tell whether the shared Python process of this host holds every managed instance.
+
+    It then brings them down itself at SIGINT (:func:`robmosys_runtime.container.bring_down`),
+    in the order ``bringup`` would, and tells ``bringup`` each step on its pipe
+    (:func:`read_steps`). Where other processes or hosts hold managed
+    instances too, ``bringup`` brings every one down through its lifecycle
+    services, in the model's order across them.
+    """
+    managed = {i['instance'] for i in description['instances'] if i['managed']}
+    return bool(managed) and managed <= set(tellers(description, shared).get(PYTHON_GROUP, ()))
+
+
+def read_steps(reading: int, wait: float) -> Iterator[Tuple[str, str]]:
+    """
+    Yield each step the shared process tells of its bring-down, until it closes its pipe.
+
+    Each comes as (level, text), as :func:`robmosys_runtime.output.say` takes it.
+    Each within wait seconds of the one before (a transition that hangs ends
+    the reading: bringup stops the process). The line of the bring-up, not
+    read if a signal came first, is skipped.
+    """
+    pending = b''
+    while True:
+        ready, _, _ = select.select([reading], [], [], wait)
+        chunk = os.read(reading, 65536) if ready else b''
+        if not chunk:
+            return
+        *lines, pending = (pending + chunk).split(b'\n')
+        for line in lines:
+            text = line.decode('utf-8', 'replace')
+            if text.startswith('error: '):
+                yield 'error', text[len('error: '):]
+            elif text and not text.startswith('{'):
+                yield 'info', text
+
+
 def told_file(path: str, group: str) -> str:
     """Return the file where the shared process of a group tells (``--told-file`` is path)."""
     return path if group == PYTHON_GROUP else f'{path}.cpp'
 
 
-def read_told(readings: Sequence[int], timeout: float,
-              signalled: threading.Event) -> Optional[Dict[str, str]]:
+def read_told(readings: Sequence[int], timeout: float, signalled: threading.Event,
+              keep_open: Sequence[int] = ()) -> Optional[Dict[str, str]]:
     """
-    Return the states the shared processes wrote to pipes, and close them.
+    Return the states the shared processes wrote to pipes, and close them but keep_open.
 
     None if none wrote any: each ended first, or did not write within timeout
     seconds, or a signal came (the manager then learns them as from a
@@ -75,7 +113,8 @@ def read_told(readings: Sequence[int], timeout: float,
                     pending.remove(reading)
     finally:
         for reading in readings:
-            os.close(reading)
+            if reading not in keep_open:
+                os.close(reading)
     return _merged(told_states(d) for d in data.values())
 
 
