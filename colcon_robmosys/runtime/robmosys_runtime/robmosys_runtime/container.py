@@ -106,7 +106,8 @@ def bring_up(instances: List[Dict[str, Any]], nodes: List[Node], reporter: Repor
     states = {**dict.fromkeys(untouched, 'unconfigured'), **dict.fromkeys(active, 'active')}
     reporter.brought_up(states)
     line = json.dumps(states) + '\n'
-    stream = None if report_fd is None else os.fdopen(report_fd, 'w', encoding='utf-8')
+    stream: Optional[IO[str]] = \
+        None if report_fd is None else os.fdopen(report_fd, 'w', encoding='utf-8')
     stream = _tell(stream, line)
     if report_file is not None:
         write_whole(report_file, line)
