@@ -277,8 +277,11 @@ def spin_until_signal(executor: Any, bring_down: Callable[[], Any]) -> None:
             select.select([reading], [], [])
             os.read(reading, 512)
         if _asked_to_end and not done.is_set():
-            bring_down()
-            rclpy.try_shutdown(context=executor.context)
+            try:
+                bring_down()
+            finally:
+                # the spin ends with the context: the pipe is not closed under it
+                rclpy.try_shutdown(context=executor.context)
         spinner.join()
     finally:
         signal.set_wakeup_fd(previous)
