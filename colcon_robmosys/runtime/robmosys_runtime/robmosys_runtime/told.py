@@ -23,7 +23,7 @@ import select
 import sys
 import threading
 import time
-from typing import Any, Dict, Iterable, Iterator, List, Optional, Sequence, Tuple
+from typing import Any, Dict, Iterable, Iterator, List, Optional, Sequence, Set, Tuple
 
 from robmosys_runtime.processes import (
     CPP_GROUP, PYTHON_GROUP, shared_arguments, shared_cpp, shared_python, SharedArguments)
@@ -43,9 +43,14 @@ def tells_all(description: Dict[str, Any], shared: Optional[bool]) -> bool:
     They then tell ``bringup`` what they brought up through pipes, and bringup
     needs no DDS participant of its own to report the bring-up.
     """
-    managed = {i['instance'] for i in description['instances'] if i['managed']}
+    managed = _managed(description)
     telling = {n for names in tellers(description, shared).values() for n in names}
     return bool(managed) and managed <= telling
+
+
+def _managed(description: Dict[str, Any]) -> Set[str]:
+    """Return the managed instances of a system."""
+    return {i['instance'] for i in description['instances'] if i['managed']}
 
 
 def brings_itself_down(description: Dict[str, Any], shared: Optional[bool]) -> bool:
@@ -58,7 +63,7 @@ def brings_itself_down(description: Dict[str, Any], shared: Optional[bool]) -> b
     instances too, ``bringup`` brings every one down through its lifecycle
     services, in the model's order across them.
     """
-    managed = {i['instance'] for i in description['instances'] if i['managed']}
+    managed = _managed(description)
     return bool(managed) and managed <= set(tellers(description, shared).get(PYTHON_GROUP, ()))
 
 
