@@ -19,6 +19,7 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
 from rclpy.task import Future
+from robmosys_runtime.transitions import close_transitions, TRANSITION_GRACE
 
 
 #: the threads a node needs beside the others of its process, when it does not
@@ -31,8 +32,6 @@ EXECUTORS = ('events', 'single-threaded', 'multi-threaded')
 
 #: seconds of each spin of an events executor (see :func:`spin`)
 EVENTS_SPIN_PERIOD = 3600.0
-#: seconds between two looks of a process's shutdown watch at its context (wake_at_shutdown)
-SHUTDOWN_WATCH_PERIOD = 0.25
 #: seconds after a first SIGINT or SIGTERM in which another is the same request:
 #: a terminal's Ctrl-C reaches every process of its group, and ros2 launch then
 #: sends each its own SIGINT. A later one ends the process at once.
@@ -81,30 +80,12 @@ def executor_threads(nodes: Sequence[Node] = ()) -> int:
     return max(os.cpu_count() or 1, needed or DEFAULT_MIN_THREADS)
 
 
-#: set once rclpy handles SIGINT (see _interrupted)
-_rclpy_handles_sigint = threading.Event()
 #: when this process was first asked to end (SIGINT or SIGTERM), by time.monotonic()
 _asked_to_end: List[float] = []
 
 
-def _interrupted(signum: int, frame: Optional[FrameType]) -> None:
-    """
-    Python's part of SIGINT in a component's process: nothing, once rclpy handles it.
-
-    rclpy's handler shuts the context down, which ends spin(), and then calls
-    the handler Python had: Python's own raised KeyboardInterrupt wherever the
-    main thread then was, even in a __del__ of the shutdown that followed
-    ("Exception ignored in ... KeyboardInterrupt", with a traceback). Before
-    rclpy is initialised, SIGINT interrupts as usual.
-    """
-    if not _rclpy_handles_sigint.is_set():
-        signal.default_int_handler(signum, frame)
-    elif not _asked_to_end:
-        _asked_to_end.append(time.monotonic())
-
-
 def _asked(signum: int, frame: Optional[FrameType]) -> None:
-    """SIGINT or SIGTERM where the process brings its nodes down itself: noted, once."""
+    """SIGINT or SIGTERM: noted, once (:func:`spin_until_signal` ends the process)."""
     if not _asked_to_end:
         _asked_to_end.append(time.monotonic())
     else:
@@ -148,20 +129,20 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
         have no callback: they publish), destroyed with the others.
     :param bring_down: run once with the nodes at SIGINT or SIGTERM, while they
         are still spun and the context is up, so that it can take them through
-        their transitions (:func:`spin_until_signal`); the process then ends.
+        their transitions; the process then ends.
+
+    At SIGINT or SIGTERM (:func:`spin_until_signal`), the transitions
+    requested of the nodes are refused from then on, and one under way is
+    waited for (:func:`robmosys_runtime.transitions.close_transitions`);
+    then bring_down runs, the context is shut down and the nodes go.
     Return the exit status (0).
     """
-    signal.signal(signal.SIGINT, _interrupted)
-    if bring_down is None:
-        rclpy.init(args=args)
-        _rclpy_handles_sigint.set()
-    else:
-        # the signals are this process's: rclpy's handler would shut the
-        # context down at once, and no transition could be published after it.
-        # One that comes while the nodes are made is taken once they spin.
-        rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
-        for signum in (signal.SIGINT, signal.SIGTERM):
-            signal.signal(signum, _asked)
+    # the signals are this process's: rclpy's handler would shut the context
+    # down at once, under a transition under way, which then fails to publish
+    # its event. One that comes while the nodes are made is taken once they spin.
+    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, _asked)
     # Made before the executor spins: served while the others were made, the
     # first nodes of a 50-node process came up later, not sooner (each node
     # added woke the executor to gather every entity again, under the GIL)
@@ -172,13 +153,8 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     executor = make_executor(executor_kind(nodes, executor_name), nodes)
     for node in nodes:
         executor.add_node(node)
-    threading.Thread(target=wake_at_shutdown, args=(executor,), daemon=True,
-                     name='shutdown watch').start()
     try:
-        if bring_down is None:
-            spin(executor)
-        else:
-            spin_until_signal(executor, lambda: bring_down(nodes))
+        spin_until_signal(executor, lambda: _end(nodes, bring_down))
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception:  # noqa: B902 - re-raised unless shutting down
@@ -197,22 +173,14 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     return 0
 
 
-def wake_at_shutdown(executor: Any, period: float = SHUTDOWN_WATCH_PERIOD) -> None:
-    """
-    Wake the executor once its context is shut down (SIGINT, SIGTERM), if it waits still.
-
-    rclpy's signal handling shuts the rcl context down from a thread of its
-    own and triggers the executors' signal guard conditions, and calls none of
-    the Python context's on_shutdown callbacks. A spin woken in between finds
-    the context still up and waits again, with nothing left to wake it: the
-    node ignored SIGINT or SIGTERM until SIGKILL (1 in 15 to 30 Ctrl-Cs of a
-    system under load, issue 28). This thread wakes it within ``period``.
-    """
-    while executor.context.ok():
-        time.sleep(period)
-    wake = getattr(executor, 'wake', None)
-    if wake is not None:
-        wake()
+def _end(nodes: List[Node], bring_down: Optional[Callable[[List[Node]], Any]]) -> None:
+    """Close the nodes' transitions, then bring them down: SIGINT or SIGTERM came."""
+    for node in close_transitions(nodes):
+        node.get_logger().warning(
+            f'a transition still under way {TRANSITION_GRACE:g} s after the signal: '
+            'the node ends in it')
+    if bring_down is not None:
+        bring_down(nodes)
 
 
 def spin(executor: Any) -> None:

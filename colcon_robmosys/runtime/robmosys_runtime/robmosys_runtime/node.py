@@ -25,7 +25,7 @@ from robmosys_runtime.announce import announce_component
 from robmosys_runtime.events import EventClient, EventServer
 from robmosys_runtime.ports import ActionClientPort, ActionServer, QueryClient
 from robmosys_runtime.qos import overridable
-from robmosys_runtime.transitions import refuse_transitions_after_shutdown, TRANSITION_VERBS
+from robmosys_runtime.transitions import guard_transitions, TRANSITION_VERBS
 
 Function = Callable[..., Any]
 Entity = TypeVar('Entity')
@@ -55,7 +55,7 @@ class ComponentNode(LifecycleNode):
         :param component: a generated component's package, announced with its ports
         """
         super().__init__(node_name, **kwargs)
-        refuse_transitions_after_shutdown(self)
+        guard_transitions(self)
         if component is not None:
             announce_component(self, component, ports)
         self._active = False

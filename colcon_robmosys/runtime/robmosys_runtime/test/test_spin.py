@@ -9,7 +9,7 @@ import rclpy
 from rclpy.exceptions import InvalidHandle
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.waitable import NumberOfEntities, Waitable
-from robmosys_runtime.main import spin, wake_at_shutdown
+from robmosys_runtime.main import spin
 
 
 class DestroyedWhileGathered(Waitable):
@@ -141,22 +141,6 @@ def test_rclpy_events_executor_alone_ends_spinning_there():
     assert ended and ticks < 5
 
 
-def test_sigint_interrupts_python_only_until_rclpy_handles_it(monkeypatch):
-    import signal
-
-    from robmosys_runtime import main
-    monkeypatch.setattr(main, '_rclpy_handles_sigint', threading.Event())
-    try:
-        main._interrupted(signal.SIGINT, None)
-    except KeyboardInterrupt:
-        pass
-    else:
-        raise AssertionError('SIGINT before rclpy.init did not interrupt')
-    # then rclpy's handler shuts the context down and calls this one: it is quiet
-    main._rclpy_handles_sigint.set()
-    assert main._interrupted(signal.SIGINT, None) is None
-
-
 def test_a_process_has_the_threads_its_nodes_need(monkeypatch):
     import os
     from types import SimpleNamespace
@@ -243,50 +227,3 @@ def _spin_in_thread(spinner, executor):
     thread = threading.Thread(target=run, daemon=True)
     thread.start()
     return thread, ended
-
-
-def _spun_past_a_silent_shutdown(watch):
-    """
-    Shut a spinning executor's context down as rclpy's signal thread does; return if it ended.
-
-    That thread shuts the rcl context down and calls none of the Python
-    context's on_shutdown callbacks (which would wake the executor): a spin
-    that waits then waits on. ``watch`` (the process's shutdown watch, or
-    nothing) runs beside it.
-    """
-    context = rclpy.Context()
-    rclpy.init(context=context)
-    node = rclpy.create_node('silent', context=context)
-    executor = MultiThreadedExecutor(context=context)
-    executor.add_node(node)
-    ended = threading.Event()
-
-    def run():
-        try:
-            spin(executor)
-        except ExternalShutdownException:
-            pass
-        ended.set()
-    threading.Thread(target=run, daemon=True).start()
-    if watch is not None:
-        threading.Thread(target=watch, args=(executor, 0.05), daemon=True).start()
-    try:
-        wait_until(lambda: False, 0.5)  # the spin waits, nothing to do
-        # the rcl context down, no Python callback: what the signal thread does
-        context._Context__context.shutdown()
-        return ended.wait(3)
-    finally:
-        executor.wake()
-        ended.wait(3)
-        executor.shutdown()
-        node.destroy_node()
-        rclpy.try_shutdown(context=context)
-
-
-def test_a_spin_that_missed_the_shutdown_is_woken_by_the_watch():
-    assert _spun_past_a_silent_shutdown(wake_at_shutdown)
-
-
-def test_rclpy_alone_waits_on_past_that_shutdown():
-    # what the watch is for: without it, SIGINT or SIGTERM left the node running
-    assert not _spun_past_a_silent_shutdown(None)
