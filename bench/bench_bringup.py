@@ -23,7 +23,9 @@ same nodes made and activated in one process by rclpy's own transitions, no
 manager; through launch, that process started by launch, whose own start is not
 the manager's; goal: the manager adds at most 1.15x). Then ``--hang-runs`` bring-ups
 in a row of the system of ``--hang-size`` instances through each path: how many
-came up, failed, hung, or needed more than SIGINT to end. With ``--cpp`` (a
+came up, failed, hung, or needed more than SIGINT to end, while another
+system (``--beside``, one process per instance) runs in a domain of its own:
+the Ctrl-C goal is set under that load. With ``--cpp`` (a
 prefix with rclcpp_components), the same with C++ components: the largest
 system in the component container against the slowest single C++ instance,
 and against its floor (``bench/cpp_floor``: the same component nodes made by
@@ -36,6 +38,7 @@ printed "met" or "NOT met".
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 from pathlib import Path
@@ -46,7 +49,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from typing import IO, Sequence
+from typing import IO, Iterator, Sequence
 
 import yaml
 
@@ -163,7 +166,7 @@ def bring_up(install: Path, package: str, path: str, layout: str, count: int,
     The durations: seconds to come up, seconds from SIGINT to every process
     ended. Whatever a killed run left running is killed.
     """
-    env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
+    env = ros_env.workspace_env(install, ros_env.loopback_env(_domain_id()))
     # every process of the run inherits it: how they are found, containers included
     marker = f'{os.getpid()}-{time.monotonic_ns()}'
     env[MARKER] = marker
@@ -210,6 +213,55 @@ KILLED = 'SIGKILL'
 MARKER = 'ROBMOSYS_BENCH_RUN'
 
 
+#: the ROS_DOMAIN_ID of the system running beside the bring-ups (--beside), none other's
+_BESIDE: set[int] = set()
+
+
+def _domain_id() -> int:
+    """Return a free ROS_DOMAIN_ID for a run: never the one of the system beside it."""
+    while True:
+        domain_id = ros_env.free_domain_id()
+        if domain_id not in _BESIDE:
+            return domain_id
+
+
+@contextlib.contextmanager
+def system_beside(install: Path, size: int, timeout: float) -> Iterator[str]:
+    """
+    Run a system of ``size`` instances, one process each, beside the bring-ups in the block.
+
+    The load issue 28 sets its Ctrl-C goal under: another system running on
+    the machine (in a domain of its own). Yield how it came up (``up``,
+    ``failed``, ``hung``); it is brought down with Ctrl-C after the block.
+    """
+    domain_id = ros_env.free_domain_id()
+    _BESIDE.add(domain_id)
+    env = ros_env.workspace_env(install, ros_env.loopback_env(domain_id))
+    marker = f'{os.getpid()}-beside'
+    env[MARKER] = marker
+    package = system_package(size)
+    command = [sys.executable, str(install / package / 'lib' / package / 'bringup'),
+               '--per-instance', '--timeout', '30', '--start-timeout', '90']
+    with tempfile.TemporaryFile() as log:
+        process = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT,
+                                   stdin=subprocess.DEVNULL, start_new_session=True)
+        try:
+            outcome, _, _ = _watch(log, process, time.monotonic(), timeout,
+                                   f'bringup: {size} of {size} managed instances active',
+                                   'managed instances active')
+            yield outcome
+        finally:
+            if process.poll() is None:
+                os.killpg(process.pid, signal.SIGINT)
+                try:
+                    process.wait(BRING_DOWN_BOUND)
+                except subprocess.TimeoutExpired:
+                    os.killpg(process.pid, signal.SIGKILL)
+                    process.wait()
+            _kill_left_over(marker)
+            _BESIDE.discard(domain_id)
+
+
 def _ended(marker: str, since: float) -> float:
     """Wait until no process of a run is left; return the seconds since ``since``."""
     deadline = time.monotonic() + BRING_DOWN_BOUND
@@ -244,7 +296,7 @@ def floor(install: Path, package: str, count: int, timeout: float,
     (``ExecuteProcess``, as ``ros2 launch`` would): what launch itself costs
     is in the floor of the launch path, not in what its manager adds.
     """
-    env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
+    env = ros_env.workspace_env(install, ros_env.loopback_env(_domain_id()))
     description = description_of(install, package)
     loaded = json.loads(description.read_text())
     params = description.parent / loaded['params_file']
@@ -317,7 +369,7 @@ def _kill_left_over(marker: str) -> None:
 
 def launch_skip_reason(install: Path) -> str | None:
     """Say why the launch path cannot run here, or None when it can."""
-    env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
+    env = ros_env.workspace_env(install, ros_env.loopback_env(_domain_id()))
     probe = ros_env.run([sys.executable, '-c', 'import launch_ros'], env=env, timeout=60)
     if probe.returncode == 0:
         return None
@@ -426,6 +478,10 @@ def main(argv: Sequence[str] | None = None) -> int:
                         help="process layouts of bringup (default: shared, the systems' own)")
     parser.add_argument('--hang-layout', choices=('per-instance', 'shared'), default='shared',
                         help="the layout of bringup's bring-ups in a row")
+    parser.add_argument('--beside', type=int, default=None, metavar='SIZE',
+                        help='instances of the system (one process each) that runs beside '
+                        'the bring-ups in a row, in a domain of its own (default: --hang-size; '
+                        '0: none)')
     parser.add_argument('--cpp', type=int, nargs='*', metavar='SIZE',
                         help='also C++ systems of these sizes, in the component container '
                         '(default: 50; needs rclcpp_components)')
@@ -439,9 +495,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f'C++ systems: skipped: {cpp_skip_reason()}')
         cpp_sizes = []
     sizes = sorted(set(args.sizes))
+    beside = args.hang_size if args.beside is None else args.beside
     with tempfile.TemporaryDirectory(prefix='robmosys-bench-bringup-') as tmp:
         root = Path(tmp)
-        write_workspace(root / 'src', sorted(set(sizes + [args.hang_size])), cpp_sizes)
+        write_workspace(root / 'src', sorted(set(sizes + [args.hang_size] +
+                                                 ([beside] if beside else []))), cpp_sizes)
         install = build(root)  # the same build as bench_runtime's
         paths = list(args.paths)
         if 'launch' in paths and launch_skip_reason(install) is not None:
@@ -470,22 +528,13 @@ def main(argv: Sequence[str] | None = None) -> int:
                     times[case].append(took)
         print_table(cases, times)
         print_goals(times, sizes, paths, cpp_sizes)
-        for path in paths:
-            outcomes: dict[str, int] = {'up': 0, 'failed': 0, 'hung': 0, 'stuck': 0,
-                                        'killed': 0}
-            for _ in range(args.hang_runs):
-                outcome, _, ended = bring_up(install, system_package(args.hang_size), path,
-                                             args.hang_layout, args.hang_size, args.timeout)
-                outcomes[outcome] += 1
-                stops[path].setdefault(args.hang_size, []).append(ended)
-            layout = args.hang_layout if path == 'bringup' else 'shared'
-            print(f'{args.hang_runs} bring-ups in a row of {args.hang_size} instances through '
-                  f'{path} ({layout}): {outcomes["up"]} up, {outcomes["failed"]} failed, '
-                  f'{outcomes["hung"]} hung (timeout {args.timeout:g} s), {outcomes["stuck"]} '
-                  f'stuck at bring-down, {outcomes["killed"]} needed SIGKILL')
-            if args.hang_runs:
-                print(f'goal: 0 hangs in {args.hang_runs} bring-ups in a row through {path}: '
-                      f'{verdict(outcomes["up"] == args.hang_runs)}')
+        with contextlib.ExitStack() as stack:
+            if beside and args.hang_runs:
+                came = stack.enter_context(system_beside(install, beside, args.timeout))
+                print(f'beside the bring-ups in a row: a system of {beside} instances, one '
+                      f'process each, {came}', flush=True)
+            for path in paths:
+                hang_runs(install, path, args, stops)
         for path, by_size in stops.items():
             # the goal is set for systems of up to GOAL_CTRL_C_SIZE instances
             measured = [e for size, durations in by_size.items() if size <= GOAL_CTRL_C_SIZE
@@ -501,6 +550,25 @@ def main(argv: Sequence[str] | None = None) -> int:
                           f'{max(larger):.2f} s of {len(larger)}')
     print_end()
     return 0
+
+
+def hang_runs(install: Path, path: str, args: argparse.Namespace,
+              stops: dict[str, dict[int, list[float]]]) -> None:
+    """Bring the --hang-size system up --hang-runs times in a row through path; print how."""
+    outcomes: dict[str, int] = {'up': 0, 'failed': 0, 'hung': 0, 'stuck': 0, 'killed': 0}
+    for _ in range(args.hang_runs):
+        outcome, _, ended = bring_up(install, system_package(args.hang_size), path,
+                                     args.hang_layout, args.hang_size, args.timeout)
+        outcomes[outcome] += 1
+        stops[path].setdefault(args.hang_size, []).append(ended)
+    layout = args.hang_layout if path == 'bringup' else 'shared'
+    print(f'{args.hang_runs} bring-ups in a row of {args.hang_size} instances through '
+          f'{path} ({layout}): {outcomes["up"]} up, {outcomes["failed"]} failed, '
+          f'{outcomes["hung"]} hung (timeout {args.timeout:g} s), {outcomes["stuck"]} '
+          f'stuck at bring-down, {outcomes["killed"]} needed SIGKILL', flush=True)
+    if args.hang_runs:
+        print(f'goal: 0 hangs in {args.hang_runs} bring-ups in a row through {path}: '
+              f'{verdict(outcomes["up"] == args.hang_runs)}')
 
 
 def print_table(cases: Cases, times: dict[tuple[str, str, str], list[float]]) -> None:
