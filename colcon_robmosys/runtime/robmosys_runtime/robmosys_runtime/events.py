@@ -25,6 +25,9 @@ from rclpy.qos import QoSProfile
 from rclpy.task import Future
 from robmosys_runtime.ports import _unless_destroyed, ActionClient, ActionServer
 
+#: the statuses of a goal its server ended
+_GOAL_ENDED = (GoalStatus.STATUS_SUCCEEDED, GoalStatus.STATUS_CANCELED, GoalStatus.STATUS_ABORTED)
+
 #: What a provided event port tests each event against: (activation, event) -> holds.
 Condition = Callable[[Any, Any], bool]
 
@@ -170,8 +173,23 @@ class EventActivation:
         self.goal_handle: Any = None
         #: how many events of this activation ran the activity
         self.events = 0
-        #: deactivated, ended by its single event, refused or aborted
-        self.ended = False
+        #: deactivated, ended by its single event, refused or aborted, as the client saw it
+        self.finished = False
+
+    @property
+    def ended(self) -> bool:
+        """
+        Tell whether the activation is over: finished, or its goal ended by the server.
+
+        The goal's status comes on a topic that keeps the last one for a
+        subscriber matched late (transient local); the result is the answer
+        of a service, which rmw_fastrtps drops when the server has not matched
+        the client's reader within 100 ms (``max_blocking_time``,
+        ros2/rmw_fastrtps#467): a server destroyed right after it aborted the
+        goal left the activation open for ever, under load.
+        """
+        return self.finished or (self.goal_handle is not None and
+                                 self.goal_handle.status in _GOAL_ENDED)
 
 
 class EventClient:
@@ -265,14 +283,14 @@ class EventClient:
             self._node.destroy_timer(self._waiting_timer)
             self._waiting_timer = self._server_since = None
         for handle, activation in waiting:
-            if not handle.ended:  # deactivated while it waited: nothing to send
+            if not handle.finished:  # deactivated while it waited: nothing to send
                 self._send(handle, activation)
 
     def deactivate(self, handle: EventActivation) -> None:
         """End an activation: none of its events runs the activity any more."""
         with self._lock:
-            goal_handle = handle.goal_handle if not handle.ended else None
-            handle.ended = True
+            goal_handle = handle.goal_handle if not handle.finished else None
+            handle.finished = True
         if goal_handle is not None:
             self._cancel(goal_handle)
 
@@ -291,11 +309,11 @@ class EventClient:
         goal_handle = future.result()
         if goal_handle is None or not goal_handle.accepted:
             self._node.get_logger().warning(f'an activation of {self.name} was refused')
-            handle.ended = True
+            handle.finished = True
             return
         with self._lock:
             handle.goal_handle = goal_handle
-            ended = handle.ended
+            ended = handle.finished
         if ended:
             self._cancel(goal_handle)
             return
@@ -307,10 +325,10 @@ class EventClient:
 
     def _event(self, handle: EventActivation, event: Any) -> None:
         with self._lock:
-            if handle.ended:
+            if handle.finished:
                 return
             handle.events += 1
-            handle.ended = handle.single
+            handle.finished = handle.single
         if self._on_event is not None:
             self._on_event(event)
 
@@ -319,11 +337,11 @@ class EventClient:
         with self._lock:
             # the event that ended a single activation is its result too:
             # it counts if its feedback was lost
-            missed = not handle.ended and handle.single and \
+            missed = not handle.finished and handle.single and \
                 response.status == GoalStatus.STATUS_SUCCEEDED
             if missed:
                 handle.events += 1
-            handle.ended = True
+            handle.finished = True
         if missed and self._on_event is not None:
             self._on_event(copy_fields(response.result, self._type.Feedback()))
 
