@@ -178,16 +178,8 @@ class EventActivation:
 
     @property
     def ended(self) -> bool:
-        """
-        Tell whether the activation is over: finished, or its goal ended by the server.
-
-        The goal's status comes on a topic that keeps the last one for a
-        subscriber matched late (transient local); the result is the answer
-        of a service, which rmw_fastrtps drops when the server has not matched
-        the client's reader within 100 ms (``max_blocking_time``,
-        ros2/rmw_fastrtps#467): a server destroyed right after it aborted the
-        goal left the activation open for ever, under load.
-        """
+        """Tell whether the activation is over: finished, or ended by its server."""
+        # the status (transient local) comes where the result may not (rmw_fastrtps#467)
         return self.finished or (self.goal_handle is not None and
                                  self.goal_handle.status in _GOAL_ENDED)
 
