@@ -251,14 +251,7 @@ def system_beside(install: Path, size: int, timeout: float) -> Iterator[str]:
                                    'managed instances active')
             yield outcome
         finally:
-            if process.poll() is None:
-                os.killpg(process.pid, signal.SIGINT)
-                try:
-                    process.wait(BRING_DOWN_BOUND)
-                except subprocess.TimeoutExpired:
-                    os.killpg(process.pid, signal.SIGKILL)
-                    process.wait()
-            _kill_left_over(marker)
+            end_run(process, marker)
             _BESIDE.discard(domain_id)
 
 
@@ -356,6 +349,18 @@ def _watch(log: IO[bytes], process: subprocess.Popen[bytes], start: float, timeo
 #: seconds bringup may take to bring a system down and end: two transitions of
 #: --timeout 30 each, the processes' 10 s to end, and a margin
 BRING_DOWN_BOUND = 2 * 30 + 10 + 20
+
+
+def end_run(process: subprocess.Popen[bytes], marker: str) -> None:
+    """End a run as Ctrl-C does (SIGINT to its group), SIGKILL after BRING_DOWN_BOUND."""
+    if process.poll() is None:
+        os.killpg(process.pid, signal.SIGINT)
+        try:
+            process.wait(BRING_DOWN_BOUND)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait()
+    _kill_left_over(marker)
 
 
 def _kill_left_over(marker: str) -> None:

@@ -21,7 +21,6 @@ import argparse
 import json
 import os
 from pathlib import Path
-import signal
 import subprocess
 import sys
 import tempfile
@@ -29,8 +28,7 @@ import time
 from typing import Sequence
 
 from bench_bringup import (
-    _kill_left_over, _watch, BRING_DOWN_BOUND, description_of, MARKER, system_package,
-    write_workspace)
+    _watch, description_of, end_run, MARKER, system_package, write_workspace)
 from bench_runtime import build
 from benchlib import best, print_end, print_machine, spread, table
 from colcon_robmosys.devtools import ros_env
@@ -90,14 +88,7 @@ def manager_cpu(install: Path, system: str, description: Path, count: int, perio
                     line for line in output.splitlines() if ': difference: ' in line))
             return used
         finally:
-            if process.poll() is None:
-                os.killpg(process.pid, signal.SIGINT)
-                try:
-                    process.wait(BRING_DOWN_BOUND)
-                except subprocess.TimeoutExpired:
-                    os.killpg(process.pid, signal.SIGKILL)
-                    process.wait()
-            _kill_left_over(env[MARKER])
+            end_run(process, env[MARKER])
 
 
 def main(argv: Sequence[str] | None = None) -> int:
