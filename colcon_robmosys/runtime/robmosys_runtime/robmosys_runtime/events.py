@@ -305,8 +305,8 @@ class EventClient:
             return
         with self._lock:
             handle.goal_handle = goal_handle
-            ended = handle.finished
-        if ended:
+            finished = handle.finished
+        if finished:
             self._cancel(goal_handle)
             return
         # released meanwhile (see _cancel): no result to ask a client that is gone

@@ -40,14 +40,12 @@ class TransitionGuard:
 
     def answer(self, node: Node, change_state: Any, request: Any, response: Any) -> Any:
         """Answer a request of the node's change_state service: refused once closed."""
-        if self._closed:  # at once, while a transition under way ends
-            response.success = False
-            return response
-        with self._lock:
-            if self._closed or not node.context.ok():
-                response.success = False
-                return response
-            return change_state(request, response)
+        if not self._closed:  # refused at once, while a transition under way ends
+            with self._lock:
+                if not self._closed and node.context.ok():
+                    return change_state(request, response)
+        response.success = False
+        return response
 
     def close(self) -> None:
         """Refuse every request from now on."""
