@@ -47,6 +47,11 @@ class RobmosysError(Exception):
         self.diagnostics = tuple(sorted(set(diagnostics)))
         super().__init__('\n'.join(str(d) for d in self.diagnostics))
 
+    def __reduce__(self) -> tuple[type, tuple[tuple[Diagnostic, ...]]]:
+        # pickled with its diagnostics (from a forked worker, check/forked.py),
+        # not with the text they make
+        return type(self), (self.diagnostics,)
+
     @classmethod
     def at(cls, location: Location, message: str) -> 'RobmosysError':
         """Create an error with a single diagnostic."""

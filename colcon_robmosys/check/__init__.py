@@ -10,6 +10,7 @@ from typing import Iterable
 
 from colcon_robmosys.check.cache import file_key, ModelCache
 from colcon_robmosys.check.file import broken_external_components, check_file
+from colcon_robmosys.check.forked import fork_map, MIN_FILES_PER_WORKER
 from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.check.results import CheckedFile, LoadResult
 from colcon_robmosys.check.rules import check_workspace, RULES
@@ -19,6 +20,7 @@ from colcon_robmosys.errors import Diagnostic, RobmosysError
 from colcon_robmosys.model import rosidl
 from colcon_robmosys.model.files import find_model_files, model_dependencies
 from colcon_robmosys.model.loader import read_model_bytes
+from colcon_robmosys.model.schema import warm_fast_check
 from colcon_robmosys.model.types import model_key, ModelFile, Workspace
 
 __all__ = ['CheckedFile', 'find_model_files', 'load_model_file', 'load_workspace',
@@ -37,15 +39,51 @@ def load_model_file(path: Path) -> ModelFile:
     return checked.model_file
 
 
+def _check_forked(read: dict[Path, tuple[bytes, str]], cache: ModelCache | None,
+                  workers: int) -> dict[Path, CheckedFile]:
+    """Check the files the cache lacks in forked workers, if they are enough for two.
+
+    A worker stores what it checked in the cache, as this process would.
+
+    :param read: the files read -> their content and key
+    :returns: what the workers checked
+    """
+    fresh = [(path, raw, key) for path, (raw, key) in read.items()
+             if cache is None or not cache.has(key)]
+    workers = min(workers, len(fresh) // MIN_FILES_PER_WORKER)
+    if workers < 2:
+        return {}
+    # compiled once, here: the workers inherit it
+    if cache is not None:
+        cache.use_compiled_schema()
+    else:
+        warm_fast_check()
+
+    def check_share(share: list[tuple[Path, bytes, str]]) -> list[CheckedFile]:
+        checked = []
+        for path, raw, key in share:
+            checked.append(check_file(path, raw))
+            if cache is not None:
+                cache.put(key, checked[-1])
+        return checked
+
+    shares = [fresh[worker::workers] for worker in range(workers)]
+    return {path: checked for share, results in zip(shares, fork_map(check_share, shares))
+            for (path, _, _), checked in zip(share, results)}
+
+
 def load_workspace(paths: Iterable[Path],
                    index: InterfaceIndex | None = None,
-                   cache: ModelCache | None = None) -> LoadResult:
+                   cache: ModelCache | None = None, workers: int = 1) -> LoadResult:
     """Load the model files and check them together.
 
     Every file is loaded even when others are broken, so that one run
     reports every problem of the workspace.
 
     :param cache: where files checked by an earlier run are kept, by content
+    :param workers: the most processes to check files in at once (see
+      :mod:`colcon_robmosys.check.forked`): one is forked for every
+      :data:`MIN_FILES_PER_WORKER` files the cache does not have
     """
     if rosidl.MISSING is not None:
         # nothing can be checked without it: one error, and every file broken,
@@ -59,8 +97,8 @@ def load_workspace(paths: Iterable[Path],
     # external components of broken files: no "unknown component" for their instances
     broken_external: set[str] = set()
 
-    def checked_file(path: Path, raw: bytes) -> CheckedFile:
-        key = keys[str(path)] = file_key(path, raw)
+    def checked_file(path: Path, raw: bytes, key: str | None = None) -> CheckedFile:
+        key = keys[str(path)] = key or file_key(path, raw)
         checked = cache.get(key) if cache is not None else None
         if checked is None:
             if cache is not None:
@@ -70,14 +108,25 @@ def load_workspace(paths: Iterable[Path],
                 cache.put(key, checked)
         return checked
 
+    #: each file -> its content and key, None where it cannot be read
+    read: dict[Path, tuple[bytes, str] | None] = {}
     for path in sorted(set(paths)):
         try:
             raw = read_model_bytes(path)
+            read[path] = (raw, file_key(path, raw))
         except RobmosysError as exc:
             diagnostics.extend(exc.diagnostics)
+            read[path] = None
+    forked = _check_forked({p: r for p, r in read.items() if r is not None}, cache, workers)
+    for path, content in read.items():
+        if content is None:
             broken[str(path)] = []
             continue
-        checked = checked_file(path, raw)
+        checked = forked.get(path)
+        if checked is None:
+            checked = checked_file(path, *content)
+        else:
+            keys[str(path)] = content[1]
         if checked.model_file is not None:
             # the models that passed: the rules of the workspace check them
             files.append(checked.model_file)

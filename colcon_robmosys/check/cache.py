@@ -115,6 +115,10 @@ class ModelCache:
                     with suppress(OSError):
                         other.unlink()
 
+    def has(self, key: str) -> bool:
+        """Say whether there is an entry for a key (:meth:`get` reads it)."""
+        return self._entry(key).is_file()
+
     def get(self, key: str) -> CheckedFile | None:
         """Return the entry of a key, None if there is none that reads back."""
         try:

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 import json
-from typing import Any
+from typing import Any, Iterable
 
 from colcon_robmosys.mapping.backends import node_start
 from colcon_robmosys.mapping.common import (
@@ -221,12 +221,20 @@ def _parameters(system: System, components: dict[str, Component],
     return tuple(nodes)
 
 
-def _installed_models(workspace: Workspace) -> dict[str, str]:
-    """Return where each model file of the workspace is installed, by a package made from it."""
-    files: dict[str, str] = {}
-    for model in sorted(workspace.generated_models, key=lambda m: m.package):
-        files.setdefault(model.info.model_file, f'share/{model.package}/{INSTALLED_MODEL}')
-    return files
+def _installed_models(workspace: Workspace, locations: Iterable[str]) -> dict[str, str]:
+    """Return where the model files of some locations are installed, by a package made from each.
+
+    The first package of a file by name installs the copy a location names.
+    Only the files of the locations: a system names a few of a workspace's
+    thousand, and each system of it looked at all of them.
+    """
+    wanted = {location.rsplit(':', 2)[0] for location in locations}
+    first: dict[str, str] = {}
+    for model in workspace.generated_models:
+        path = model.info.model_file
+        if path in wanted and (path not in first or model.package < first[path]):
+            first[path] = model.package
+    return {path: f'share/{package}/{INSTALLED_MODEL}' for path, package in first.items()}
 
 
 def installed_location(location: str, installed: dict[str, str]) -> str:
@@ -265,6 +273,8 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
                                'ament_index_python', RUNTIME_PACKAGE)
     # C++ instances: the package builds their component container, robmosys_runtime's
     cpp_container = any(n.plugin for n in nodes)
+    watched = watched_instances(system, components, topics)
+    connections = system_connections(system, components, topics)
     return SystemPackage(
         banner=banner, package=system.package, name=system.name, nodes=nodes,
         launch_files=launch_files(system, nodes, banner),
@@ -272,10 +282,12 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
         diagram=f'doc/{system.package}.dot',
         instances=diagram_instances(system, components),
         edges=diagram_edges(system, components, topics),
-        connections=system_connections(system, components, topics),
+        connections=connections,
         processes=process_layout(system),
-        watched=watched_instances(system, components, topics),
-        model_files=tuple(sorted(_installed_models(workspace).items())),
+        watched=watched,
+        model_files=tuple(sorted(_installed_models(workspace, [
+            *(w.location for w in watched), *(at for w in watched for _, _, at in w.parameters),
+            *(c.location for c in connections)]).items())),
         declared=tuple((i.name, declared_parameters(i, components[i.name], topics,
                                                     dict(system.parameters)))
                        for i in system.instances),

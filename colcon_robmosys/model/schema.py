@@ -134,6 +134,11 @@ def _fast_check() -> Callable[[Any], Any] | None:
     return _fast[0]
 
 
+def warm_fast_check() -> None:
+    """Compile the schema now, before this process forks workers that check models."""
+    _fast_check()
+
+
 def fast_check_ready() -> bool:
     """Say whether this process has its compiled schema already (or knows it has none)."""
     return bool(_fast)

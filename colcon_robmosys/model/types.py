@@ -69,9 +69,12 @@ class Workspace:
     # model file -> how many components of it generate a package
     _components_per_file: dict[str, int] = field(
         init=False, repr=False, compare=False)
+    # the models that generate a package, asked for by every system's plan
+    _generated: tuple[Model, ...] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        models = tuple(m for f in self.files for m in f.models)
+        of_files = [(f, f.models) for f in self.files]
+        models = tuple(m for _, of_file in of_files for m in of_file)
         by_package: dict[str, Model] = {}
         for model in models:
             # a package claimed twice is an error of the workspace; until
@@ -84,6 +87,9 @@ class Workspace:
         object.__setattr__(self, 'models', models)
         object.__setattr__(self, '_by_package', by_package)
         object.__setattr__(self, '_components_per_file', per_file)
+        object.__setattr__(self, '_generated', tuple(
+            m for f, of_file in of_files if not f.installed for m in of_file
+            if not (isinstance(m, (Component, ServiceDefinition)) and m.external)))
 
     @property
     def generated_models(self) -> tuple[Model, ...]:
@@ -93,8 +99,7 @@ class Workspace:
         definitions (an installed interface package), nor the models an
         underlay installed (built there).
         """
-        return tuple(m for f in self.files if not f.installed for m in f.models
-                     if not (isinstance(m, (Component, ServiceDefinition)) and m.external))
+        return self._generated
 
     def components_in_file(self, model_file: str) -> int:
         """Return how many components of a model file generate a package."""

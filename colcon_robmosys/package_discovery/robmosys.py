@@ -58,10 +58,18 @@ class CheckedModels:
     @property
     def result(self):
         """Return the check stage's result, checking the workspace the first time."""
+        return self.checked()
+
+    def checked(self, workers=1):
+        """Return the check stage's result, checking the workspace the first time.
+
+        :param workers: the most processes to check in at once, forked (a
+          verb that runs no thread beside its own: robmosys-generate)
+        """
         with self._lock:
             if self._result is None:
                 self._result = load_workspace(
-                    self._model_files, cache=self._cache)
+                    self._model_files, cache=self._cache, workers=workers)
                 # bare compiler-style lines, once; warnings are told by the
                 # build of their package and by robmosys-generate, and only
                 # for the packages selected
@@ -81,9 +89,13 @@ class CheckedModels:
         return f'<CheckedModels of {len(self._model_files)} model files, {state}>'
 
 
-def checked_result(descriptor):
-    """Return the check stage's result a descriptor of ours carries."""
-    return descriptor.metadata[METADATA_KEY].result
+def checked_result(descriptor, workers=1):
+    """Return the check stage's result a descriptor of ours carries.
+
+    :param workers: the most processes to check in at once, forked, if the
+      workspace is not checked yet (see :meth:`CheckedModels.checked`)
+    """
+    return descriptor.metadata[METADATA_KEY].checked(workers)
 
 
 class RobmosysPackageDiscovery(PackageDiscoveryExtensionPoint):

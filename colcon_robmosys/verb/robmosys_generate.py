@@ -1,6 +1,7 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 
+import argparse
 import os
 from pathlib import Path
 import sys
@@ -12,15 +13,11 @@ from colcon_core.plugin_system import satisfies_version
 from colcon_core.verb import VerbExtensionPoint
 
 from colcon_robmosys.check.cache import CACHE_DIR
+from colcon_robmosys.check.forked import MIN_FILES_PER_WORKER
 from colcon_robmosys.errors import print_diagnostics
 from colcon_robmosys.errors import RobmosysError
-from colcon_robmosys.generators import create_missing_user_files
 from colcon_robmosys.generators import Durable
-from colcon_robmosys.generators import fingerprint
-from colcon_robmosys.generators import generate_package
-from colcon_robmosys.generators import plan_package
 from colcon_robmosys.generators import StampStore
-from colcon_robmosys.generators import unchanged_package
 from colcon_robmosys.generators import write_tree
 from colcon_robmosys.mapping.common import RUNTIME_PACKAGE
 from colcon_robmosys.mapping.distributions import distribution_problem
@@ -33,6 +30,9 @@ from colcon_robmosys.runtime import runtime_source
 from colcon_robmosys.verb import add_diagnostics_arguments
 from colcon_robmosys.verb import diagnostics_request
 from colcon_robmosys.verb import display_path
+from colcon_robmosys.verb.generation import generate_packages
+from colcon_robmosys.verb.generation import Package
+from colcon_robmosys.verb.generation import parallel_workers
 
 
 class RobmosysGenerateVerb(VerbExtensionPoint):
@@ -71,6 +71,12 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
             help='The base path of the build tree, where the checked models are '
             'cached and what each generation read is recorded, as colcon build '
             'keeps them (default: build)')
+        parser.add_argument(
+            '--parallel-workers', metavar='NUMBER', type=_positive,
+            help='The most processes generating packages at once (default: '
+            'the CPUs this process may use; a worker is forked for every '
+            f'{MIN_FILES_PER_WORKER} model files at most, and 1 generates '
+            'everything in this process)')
         add_diagnostics_arguments(parser)
         add_packages_arguments(parser)
 
@@ -105,7 +111,8 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
                 _say_not_exported(decorators, [], uses_runtime=False)
             print('No RobMoSys model selected', file=sys.stderr)
             return 0
-        result = checked_result(selected[0])
+        workers = parallel_workers(args.parallel_workers)
+        result = checked_result(selected[0], workers)
         warnings = [w for d in selected for w in result.warnings_of(d.name)]
         print_diagnostics(warnings)
         model_files = {d.metadata['robmosys_model_file'] for d in selected}
@@ -146,49 +153,17 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
                 # created once: touching it would change its mtime on
                 # every run, and a run with no change changes nothing
                 marker.touch()
-        status, uses_runtime = 0, False
         # the cache of the checked models holds the stamps of the packages
         # generated (as a build's): a package whose inputs have not changed
         # since is neither planned nor rendered again
-        stamps = StampStore(Path(args.build_base) / CACHE_DIR / 'stamps')
-        created, generating = Durable(), Durable()
-        todo = []
-        for descriptor in selected:
-            out = None if out_base is None else out_base / descriptor.name
-            inputs = fingerprint(result, descriptor.name, standalone=True)
-            report = None if out is None else unchanged_package(out, stamps, inputs)
-            if report is not None:
-                _say_generated(descriptor.name, out, report)
-                uses_runtime = uses_runtime or \
-                    RUNTIME_PACKAGE in descriptor.get_dependencies()
-                continue
-            try:
-                plan = plan_package(result.workspace, descriptor.name)
-                create_missing_user_files(plan, created)
-                todo.append((plan, out, inputs))
-            except RobmosysError as error:
-                print_diagnostics(error.diagnostics)
-                found += error.diagnostics
-                status = 1
-        # the user's files, made durable together, before the packages read them
-        for path in created.commit():
-            print(f'created {display_path(path)}: yours to fill in')
-        try:
-            for plan, out, inputs in todo:
-                try:
-                    if out is not None:
-                        # output the user keeps (it may be under version
-                        # control), unlike the build tree: made durable
-                        _say_generated(plan.name, out, generate_package(
-                            plan, out, durable=generating, stamps=stamps,
-                            fingerprint=inputs))
-                    uses_runtime = uses_runtime or RUNTIME_PACKAGE in plan.depends
-                except RobmosysError as error:
-                    print_diagnostics(error.diagnostics)
-                    found += error.diagnostics
-                    status = 1
-        finally:
-            generating.commit()
+        outcome = generate_packages(result, [
+            Package(d.name, d.metadata['robmosys_model_file'],
+                    None if out_base is None else out_base / d.name,
+                    RUNTIME_PACKAGE in d.get_dependencies())
+            for d in selected], StampStore(Path(args.build_base) / CACHE_DIR / 'stamps'),
+            workers)
+        found += outcome.found
+        status, uses_runtime = outcome.status, outcome.uses_runtime
         if args.export is not None:
             _say_not_exported(decorators, selected, uses_runtime=uses_runtime)
         provider = installed_runtime(
@@ -213,14 +188,6 @@ class RobmosysGenerateVerb(VerbExtensionPoint):
                   f'{len(report.unchanged)} unchanged, '
                   f'{len(report.removed)} removed')
         return status
-
-
-def _say_generated(package, out, report):
-    """Say what the generation of a package wrote."""
-    print(f'generated {package} in {display_path(out)}: '
-          f'{len(report.written)} written, '
-          f'{len(report.unchanged)} unchanged, '
-          f'{len(report.removed)} removed')
 
 
 def _say_not_exported(decorators, models, *, uses_runtime):
@@ -248,6 +215,17 @@ def _say_not_exported(decorators, models, *, uses_runtime):
         print(f'not exported: {name} ({display_path(descriptor.path)}): a hand-written '
               f'package, not generated from a model: nothing to export, its sources are '
               f'the package{needed}')
+
+
+def _positive(text):
+    """Read a positive number of the command line (argparse's type)."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a positive number")
+    return value
 
 
 def _runtime_files():
