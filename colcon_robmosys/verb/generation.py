@@ -8,8 +8,10 @@ kernel's: one process keeps one core busy. Above a few dozen model files the
 verb forks workers (``--parallel-workers``, as ``colcon build`` has), each
 generating the packages of its share of the model files from start to end,
 as one process does: plan, create the missing implementation files, render,
-write, made durable together (generators/durable.py), stamp. A model file's
-packages stay in one worker: they read the same folders of the user's.
+write, made durable together (generators/durable.py), stamp; the last share
+is this process's own. A model file's packages stay in one share: they read
+the same folders of the user's. No thread runs beside the verb's (a fork
+copies only the calling thread).
 
 What the run prints is the same whichever way: each worker records its lines,
 and this process prints them in the order one process would have.
