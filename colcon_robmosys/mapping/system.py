@@ -228,13 +228,21 @@ def _installed_models(workspace: Workspace, locations: Iterable[str]) -> dict[st
     Only the files of the locations: a system names a few of a workspace's
     thousand, and each system of it looked at all of them.
     """
-    wanted = {location.rsplit(':', 2)[0] for location in locations}
+    wanted = {parts[0] for parts in map(_split_location, locations) if parts}
     first: dict[str, str] = {}
     for model in workspace.generated_models:
         path = model.info.model_file
         if path in wanted and (path not in first or model.package < first[path]):
             first[path] = model.package
     return {path: f'share/{package}/{INSTALLED_MODEL}' for path, package in first.items()}
+
+
+def _split_location(location: str) -> tuple[str, str, str] | None:
+    """Return the path, line and column of a location, None if it is no ``path:line:column``."""
+    parts = location.rsplit(':', 2)
+    if len(parts) != 3 or not (parts[1].isdigit() and parts[2].isdigit()):
+        return None
+    return parts[0], parts[1], parts[2]
 
 
 def installed_location(location: str, installed: dict[str, str]) -> str:
@@ -245,8 +253,8 @@ def installed_location(location: str, installed: dict[str, str]) -> str:
     shifted. A model of an underlay was read from its installed copy already.
     A location in no such file is returned as it is.
     """
-    parts = location.rsplit(':', 2)
-    if len(parts) != 3 or not (parts[1].isdigit() and parts[2].isdigit()):
+    parts = _split_location(location)
+    if parts is None:
         return location
     path, line, column = parts
     if path in installed:
