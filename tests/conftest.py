@@ -137,6 +137,13 @@ def mtimes(root: Path, *bases: str) -> dict[str, int]:
             if path.is_file()}
 
 
+def contents(root: Path, *bases: str) -> dict[str, bytes]:
+    """Return the content of each file below the bases of root (all of it), by path from root."""
+    return {path.relative_to(root).as_posix(): path.read_bytes()
+            for base in bases or ('.',) for path in (root / base).rglob('*')
+            if path.is_file()}
+
+
 @pytest.fixture
 def domain_id() -> int:
     """Return a ROS_DOMAIN_ID of this test's own."""

@@ -22,7 +22,7 @@ import pytest
 from colcon_robmosys.devtools import ros_env
 from colcon_robmosys.devtools.ros_env import background
 from colcon_robmosys.devtools.system import wait_until
-from conftest import colcon, requires_ros, TEST_WORKSPACE
+from conftest import colcon, contents, requires_ros, TEST_WORKSPACE
 from harness.rosdep import ROSDEP, rosdep, rosdep_env
 
 #: every colcon extension of colcon-robmosys (setup.cfg): none may take part
@@ -153,11 +153,6 @@ def test_a_file_changed_in_the_export_is_kept(tmp_path):
     assert changed.read_text() == '# patched for the release\n'
 
 
-def _tree(folder: Path) -> dict[str, bytes]:
-    return {p.relative_to(folder).as_posix(): p.read_bytes()
-            for p in sorted(folder.rglob('*')) if p.is_file()}
-
-
 def test_hand_written_packages_of_the_selection_are_named_once_each(tmp_path):
     workspace = _workspace(tmp_path / 'ws')
     up_to = ('--packages-up-to', 'handwritten_system', 'map_tools', 'hand_level_sensor')
@@ -189,4 +184,4 @@ def test_hand_written_packages_of_the_selection_are_named_once_each(tmp_path):
     assert result.returncode == 0, result.stdout + result.stderr
     assert 'not exported' not in result.stdout
     assert sorted(p.name for p in alone.iterdir()) == exported
-    assert _tree(export) == _tree(alone)
+    assert contents(export) == contents(alone)

@@ -25,7 +25,7 @@ from colcon_robmosys.generators import plan_package
 from colcon_robmosys.generators.filters import cpp_comment, cpp_str
 from colcon_robmosys.mapping.backends.cpp.parameters import string_lines
 from colcon_robmosys.model.types import Component, Language
-from conftest import TEST_WORKSPACE
+from conftest import contents, TEST_WORKSPACE
 
 GOLDEN = Path(__file__).resolve().parent / 'golden'
 #: A component with every port and parameter kind, beside the examples.
@@ -66,11 +66,6 @@ def generated_cpp(tmp_path_factory) -> Path:
     return out
 
 
-def _tree(root: Path) -> dict[str, bytes]:
-    return {p.relative_to(root).as_posix(): p.read_bytes()
-            for p in sorted(root.rglob('*')) if p.is_file()}
-
-
 def test_examples_hold_every_cpp_pattern():
     assert CPP_PACKAGES == ['all_ports', 'cpp_client', 'cpp_dummy_joint_states',
                             'cpp_dummy_laser', 'cpp_dummy_map_server', 'cpp_level_sensor',
@@ -81,7 +76,7 @@ def test_examples_hold_every_cpp_pattern():
 @pytest.mark.parametrize('package', CPP_PACKAGES)
 def test_golden(generated_cpp, package):
     """The generated tree is the reviewed one, byte for byte."""
-    actual = _tree(generated_cpp / package)
+    actual = contents(generated_cpp / package)
     golden_dir = GOLDEN / package
     if UPDATE:
         shutil.rmtree(golden_dir, ignore_errors=True)
@@ -89,7 +84,7 @@ def test_golden(generated_cpp, package):
             path = golden_dir / relative
             path.parent.mkdir(parents=True, exist_ok=True)
             path.write_bytes(data)
-    expected = _tree(golden_dir)
+    expected = contents(golden_dir)
     assert sorted(actual) == sorted(expected), \
         'the generated files differ from tests/golden: see ' \
         'tests/test_generated_cpp.py for how to regenerate them'
@@ -100,7 +95,7 @@ def test_golden(generated_cpp, package):
 
 
 def test_layout_of_the_reference(generated_cpp):
-    files = set(_tree(generated_cpp / 'cpp_subscriber'))
+    files = set(contents(generated_cpp / 'cpp_subscriber'))
     assert files == {
         '.robmosys-generated', 'CMakeLists.txt', 'package.xml',
         'src-gen/cpp_subscriber/Subscriber.hpp', 'src-gen/cpp_subscriber/Subscriber.cpp',

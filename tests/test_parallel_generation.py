@@ -21,7 +21,7 @@ from colcon_robmosys.check.cache import file_key
 from colcon_robmosys.check.forked import fork_map, MIN_FILES_PER_WORKER
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
 from colcon_robmosys.verb.generation import _shares, Package
-from conftest import colcon, requires_ros
+from conftest import colcon, contents, requires_ros
 
 #: Enough model files for two workers.
 COMPONENTS = 2 * MIN_FILES_PER_WORKER + 4
@@ -69,11 +69,6 @@ def write_workspace(src: Path, *, broken: bool = False) -> None:
         text = (src / 'comp9' / 'robmosys.yaml').read_text(encoding='utf-8')
         (src / 'comp9' / 'robmosys.yaml').write_text(
             text.replace('name: C9', 'name: 9C'), encoding='utf-8')
-
-
-def _tree(root: Path, *folders: str) -> dict[str, bytes]:
-    return {str(p.relative_to(root)): p.read_bytes()
-            for folder in folders for p in sorted((root / folder).rglob('*')) if p.is_file()}
 
 
 def test_fork_map_runs_each_share_but_the_last_in_a_process_of_its_own():
@@ -191,7 +186,7 @@ def test_the_verb_in_two_processes_generates_what_one_generates(tmp_path):
     assert sum(line.startswith('created ') for line in lines) >= COMPONENTS - 1
     assert sum(line.startswith('generated ') for line in lines) == COMPONENTS
     # the same files, generated and created, and the user's untouched
-    assert _tree(tmp_path / 'two', 'gen', 'src') == _tree(tmp_path / 'one', 'gen', 'src')
+    assert contents(tmp_path / 'two', 'gen', 'src') == contents(tmp_path / 'one', 'gen', 'src')
     assert (tmp_path / 'two' / IMPL.format(n=5)).read_text(
         encoding='utf-8') == '# my own, unfinished\n'
     # the user mends it from the model's blueprint; the next run generates that package
@@ -203,12 +198,12 @@ def test_the_verb_in_two_processes_generates_what_one_generates(tmp_path):
     assert mended.returncode == 0, mended.stdout + mended.stderr
     written = [line for line in mended.stdout.splitlines() if ' 0 written' not in line]
     assert written == [line for line in written if 'comp5 ' in line] and len(written) == 1
-    before = _tree(tmp_path / 'two', 'gen')
+    before = contents(tmp_path / 'two', 'gen')
     again = colcon(['robmosys-generate', '--output-dir', 'gen'], cwd=tmp_path / 'two')
     assert again.returncode == 0, again.stdout + again.stderr
     assert all(' 0 written' in line for line in again.stdout.splitlines()
                if line.startswith('generated '))
-    assert _tree(tmp_path / 'two', 'gen') == before
+    assert contents(tmp_path / 'two', 'gen') == before
 
 
 def test_a_model_error_in_a_worker_reaches_the_caller_whole():
