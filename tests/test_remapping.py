@@ -99,8 +99,13 @@ CLIENT = textwrap.dedent("""
     node = Node('unnamed')
     client = node.create_client(BasicTypes, 'qSum')
     assert client.wait_for_service(timeout_sec=30), 'no service'
-    future = client.call_async(BasicTypes.Request(int32_value=41))
-    rclpy.spin_until_future_complete(node, future, timeout_sec=30)
+    # asked again while rmw_fastrtps drops the answer to an unmatched reader
+    for attempt in (1, 2, 4, 8, 15):
+        future = client.call_async(BasicTypes.Request(int32_value=41))
+        rclpy.spin_until_future_complete(node, future, timeout_sec=attempt)
+        if future.done():
+            break
+        client.remove_pending_request(future)
     print('answer', future.result().int32_value, flush=True)
     actions = ActionClient(node, Fibonacci, 'aFibonacci')
     assert actions.wait_for_server(timeout_sec=30), 'no action server'

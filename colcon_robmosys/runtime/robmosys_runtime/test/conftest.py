@@ -60,6 +60,27 @@ def wait_until(condition, timeout: float = 10.0) -> bool:
     return bool(condition())
 
 
+def answer(client, request, timeout: float = 20.0):
+    """
+    Return the answer of a spun client to a request that may be asked again.
+
+    rmw_fastrtps drops an answer to a client whose reader of answers the server
+    has not matched within 100 ms ('failed to send response'): the request is
+    asked again, soon and then less often, until one comes within timeout.
+    """
+    deadline = time.monotonic() + timeout
+    attempt = 1.0
+    while True:
+        done = threading.Event()
+        future = client.call_async(request)
+        future.add_done_callback(lambda _: done.set())
+        if done.wait(max(0.0, min(attempt, deadline - time.monotonic()))):
+            return future.result()
+        client.remove_pending_request(future)
+        assert time.monotonic() < deadline, f'no answer on {client.srv_name} in {timeout} s'
+        attempt *= 2
+
+
 @pytest.fixture
 def spinning():
     context = rclpy.Context()

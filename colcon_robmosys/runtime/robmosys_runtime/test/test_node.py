@@ -4,7 +4,7 @@
 
 import threading
 
-from conftest import wait_until
+from conftest import answer, wait_until
 import rclpy
 from rclpy.lifecycle import TransitionCallbackReturn
 from rclpy.node import Node
@@ -110,11 +110,7 @@ def test_queries_are_answered_while_active_only(spinning):
     assert client.wait_for_service(timeout_sec=10)
 
     def ask(value):
-        done = threading.Event()
-        future = client.call_async(BasicTypes.Request(int32_value=value))
-        future.add_done_callback(lambda _: done.set())
-        assert done.wait(10)
-        return future.result().int32_value
+        return answer(client, BasicTypes.Request(int32_value=value)).int32_value
     assert ask(21) == 0  # inactive: the default response
     _lifecycle(node, 'activate')
     assert ask(21) == 42
