@@ -82,3 +82,29 @@ def test_scalars_in_every_place():
         for path in _paths(original)[1:]:
             turn += 1
             _agree(_edit(copy.deepcopy(original), path, 'replace', values[turn % len(values)]))
+
+
+@needs_fast
+def test_the_compiled_keyword_check_refuses_every_keyword_and_nothing_else():
+    import fastjsonschema
+    keywords = schema.schema()['$defs']['reserved_word']['enum']
+    near = [*(f'{word}{tail}' for word in keywords for tail in ('_', '2', '\n', ' ')),
+            *(f'x{word}' for word in keywords), *(word.swapcase() for word in keywords),
+            '', 'x', 1, None, [], {}, True]
+    near = [value for value in near if value not in keywords]  # 'x' 'or' is 'xor'
+
+    def passes(definitions: dict, value: Any) -> bool:
+        check = fastjsonschema.compile({
+            '$schema': 'http://json-schema.org/draft-07/schema#',
+            '$defs': definitions, '$ref': '#/$defs/not_reserved'})
+        try:
+            check(value)
+        except fastjsonschema.JsonSchemaException:
+            return False
+        return True
+    fast = schema._fast_schema()['$defs']
+    assert not [word for word in keywords if passes(fast, word)]
+    assert not [value for value in near if not passes(fast, value)]
+    # the schema as written says the same (its enum)
+    assert not [word for word in keywords if passes(schema.schema()['$defs'], word)]
+    assert not [value for value in near if not passes(schema.schema()['$defs'], value)]
