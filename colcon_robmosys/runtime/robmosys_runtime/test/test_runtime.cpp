@@ -6,11 +6,13 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "action_msgs/msg/goal_status.hpp"
 #include "rclcpp/rclcpp.hpp"
 #include "rclcpp_action/rclcpp_action.hpp"
 #include "std_msgs/msg/int32.hpp"
@@ -164,6 +166,73 @@ protected:
   }
 };
 
+/// An action server that accepts each goal and never answers the request for its
+/// result: the result of a goal its server ended, lost (rmw_fastrtps drops an answer
+/// to a reader it has not matched, as under load to a server released right after
+/// it aborted the goal). Its status, transient local, still tells the goal's end.
+class ResultlessServer
+{
+public:
+  using Impl = Fibonacci::Impl;
+
+  ResultlessServer(rclcpp::Node * node, const std::string & name)
+  {
+    const std::string prefix = name + "/_action/";
+    send_goal_ = node->create_service<Impl::SendGoalService>(
+      prefix + "send_goal",
+      [this](
+        const std::shared_ptr<Impl::SendGoalService::Request> request,
+        std::shared_ptr<Impl::SendGoalService::Response> response) {
+        response->accepted = true;
+        std::lock_guard<std::mutex> lock(mutex_);
+        goals_.push_back(request->goal_id);
+      });
+    cancel_goal_ = node->create_service<Impl::CancelGoalService>(
+      prefix + "cancel_goal",
+      [](
+        const std::shared_ptr<Impl::CancelGoalService::Request>,
+        std::shared_ptr<Impl::CancelGoalService::Response> response) {
+        response->return_code = Impl::CancelGoalService::Response::ERROR_REJECTED;
+      });
+    // deferred, and never answered
+    get_result_ = node->create_service<Impl::GetResultService>(
+      prefix + "get_result",
+      [](std::shared_ptr<rmw_request_id_t>, std::shared_ptr<Impl::GetResultService::Request>) {});
+    feedback_ = node->create_publisher<Impl::FeedbackMessage>(prefix + "feedback", 10);
+    status_ = node->create_publisher<Impl::GoalStatusMessage>(
+      prefix + "status", rclcpp::QoS(1).reliable().transient_local());
+  }
+
+  size_t goals()
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return goals_.size();
+  }
+
+  /// Publish the end of every goal, aborted.
+  void abort()
+  {
+    Impl::GoalStatusMessage statuses;
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto & goal : goals_) {
+      action_msgs::msg::GoalStatus status;
+      status.goal_info.goal_id = goal;
+      status.status = action_msgs::msg::GoalStatus::STATUS_ABORTED;
+      statuses.status_list.push_back(status);
+    }
+    status_->publish(statuses);
+  }
+
+private:
+  std::mutex mutex_;
+  std::vector<Impl::SendGoalService::Request::_goal_id_type> goals_;
+  rclcpp::Service<Impl::SendGoalService>::SharedPtr send_goal_;
+  rclcpp::Service<Impl::CancelGoalService>::SharedPtr cancel_goal_;
+  rclcpp::Service<Impl::GetResultService>::SharedPtr get_result_;
+  rclcpp::Publisher<Impl::FeedbackMessage>::SharedPtr feedback_;
+  rclcpp::Publisher<Impl::GoalStatusMessage>::SharedPtr status_;
+};
+
 }  // namespace
 
 void query_client()
@@ -216,7 +285,7 @@ void events_reach_the_activations_whose_condition_holds()
   Fibonacci::Goal activation;
   activation.order = 10;
   auto handle = client.activate(activation);
-  EXPECT(wait_until([&handle]() {return static_cast<bool>(handle->goal_handle);}));
+  EXPECT(wait_until([&handle]() {return static_cast<bool>(handle->goal_handle());}));
   Fibonacci::Feedback low, high;
   low.sequence = {3};
   high.sequence = {12};
@@ -254,7 +323,7 @@ void an_activation_made_before_the_server_is_there_is_sent_once_it_is()
   auto dropped = client.activate(activation);
   client.deactivate(dropped);  // deactivated while it waited: never sent
   std::this_thread::sleep_for(500ms);
-  EXPECT(!early->goal_handle && !early->ended);
+  EXPECT(!early->goal_handle() && !early->ended);
   robmosys_runtime::EventServer<Fibonacci> server(
     sensor.get(), "late_event", rclcpp::QoS(10), nullptr,
     [](const Fibonacci::Goal & kept, const Fibonacci::Feedback & event) {
@@ -266,7 +335,34 @@ void an_activation_made_before_the_server_is_there_is_sent_once_it_is()
   // matched the client's subscription is not the last
   EXPECT(wait_until([&]() {return server.fire(high) >= 1u && events >= 1;}));
   EXPECT(server.fire(high) == 1u);  // the one that waited, not the dropped one
-  EXPECT(dropped->events == 0u && !dropped->goal_handle);
+  EXPECT(dropped->events == 0u && !dropped->goal_handle());
+  runtime.stop();
+}
+
+void an_activation_its_server_ended_is_ended_without_its_result()
+{
+  Runtime runtime;
+  auto sensor = std::make_shared<rclcpp::Node>("resultless_sensor");
+  auto watcher = std::make_shared<rclcpp::Node>("resultless_watcher");
+  robmosys_runtime::EventClient<Fibonacci> client(
+    watcher.get(), "resultless_event", rclcpp::QoS(10));
+  runtime.spin(sensor);
+  runtime.spin(watcher);
+  runtime.start();
+  Fibonacci::Goal activation;
+  activation.order = 1;
+  // activated before the server is there: sent once the server has matched the client
+  auto handle = client.activate(activation);
+  ResultlessServer server(sensor.get(), "resultless_event");
+  EXPECT(wait_until([&handle]() {return static_cast<bool>(handle->goal_handle());}));
+  EXPECT(server.goals() == 1u && !handle->ended);
+  server.abort();
+  // the goal's status tells it
+  EXPECT(wait_until([&handle]() {return handle->ended.load();}));
+  EXPECT(!handle->finished);
+  // deactivating an activation its server ended cancels nothing, and does not throw
+  client.deactivate(handle);
+  EXPECT(handle->finished && handle->ended);
   runtime.stop();
 }
 
@@ -366,6 +462,7 @@ int main()
   for (const auto & test : std::vector<std::function<void()>>{
     query_client, events_reach_the_activations_whose_condition_holds,
     an_activation_made_before_the_server_is_there_is_sent_once_it_is,
+    an_activation_its_server_ended_is_ended_without_its_result,
     component_ports_live_from_configure_to_cleanup, queries_are_answered_while_active_only,
     a_throwing_hook_fails_its_transition, mapped_entries_are_checked_as_the_model_checks_them})
   {

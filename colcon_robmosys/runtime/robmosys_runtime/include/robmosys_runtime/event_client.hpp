@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "action_msgs/msg/goal_status.hpp"
 #include "rclcpp/rclcpp.hpp"
 #include "rclcpp_action/rclcpp_action.hpp"
 
@@ -25,21 +26,85 @@ namespace robmosys_runtime
 
 /// An activation of an event by a required event port.
 template<typename ActionT>
-struct EventActivation
+class EventActivation
 {
-  explicit EventActivation(bool single_activation)
-  : single(single_activation)
+public:
+  using GoalHandle = rclcpp_action::ClientGoalHandle<ActionT>;
+
+  /// Whether an activation is over; it reads as the bool it is (and load()).
+  class Ended
   {
+public:
+    explicit Ended(const EventActivation & activation)
+    : activation_(activation)
+    {
+    }
+
+    Ended(const Ended &) = delete;
+    Ended & operator=(const Ended &) = delete;
+
+    /// Finished as the client saw it, or its goal ended by its server: the status
+    /// (transient local) comes where the result may not (rmw_fastrtps drops an answer
+    /// to a reader it has not matched, as under load to a server released right after
+    /// it aborted the goal).
+    bool load() const
+    {
+      if (activation_.finished) {
+        return true;
+      }
+      const auto goal = activation_.goal_handle();
+      if (!goal) {
+        return false;
+      }
+      const auto status = goal->get_status();
+      return status == action_msgs::msg::GoalStatus::STATUS_SUCCEEDED ||
+             status == action_msgs::msg::GoalStatus::STATUS_CANCELED ||
+             status == action_msgs::msg::GoalStatus::STATUS_ABORTED;
+    }
+
+    /// Implicit, as the std::atomic<bool> it was.
+    operator bool() const
+    {
+      return load();
+    }
+
+private:
+    const EventActivation & activation_;
+  };
+
+  explicit EventActivation(bool single_activation)
+  : single(single_activation), ended(*this)
+  {
+  }
+
+  /// The goal, once the server accepted the activation (nullptr until then).
+  typename GoalHandle::SharedPtr goal_handle() const
+  {
+    std::lock_guard<std::mutex> lock(goal_mutex_);
+    return goal_handle_;
   }
 
   /// The first event ends the activation.
   const bool single;
   /// How many events of this activation ran the activity.
   std::atomic<size_t> events{0};
-  /// Deactivated, ended by its single event, refused or aborted.
-  std::atomic<bool> ended{false};
-  /// The goal, once the server accepted the activation.
-  typename rclcpp_action::ClientGoalHandle<ActionT>::SharedPtr goal_handle;
+  /// Deactivated, ended by its single event or by its result, or refused.
+  std::atomic<bool> finished{false};
+  /// Over: finished, or its goal ended by its server.
+  const Ended ended;
+
+private:
+  template<typename>
+  friend class EventClient;
+
+  void set_goal_handle(typename GoalHandle::SharedPtr goal)
+  {
+    std::lock_guard<std::mutex> lock(goal_mutex_);
+    goal_handle_ = std::move(goal);
+  }
+
+  mutable std::mutex goal_mutex_;
+  typename GoalHandle::SharedPtr goal_handle_;
 };
 
 /// A required event port: an action client whose goals are activations.
@@ -101,7 +166,7 @@ public:
     }
     std::lock_guard<std::mutex> lock(state_->mutex);
     for (const auto & activation : state_->activations) {
-      activation->goal_handle.reset();
+      activation->set_goal_handle(nullptr);
     }
     state_->activations.clear();
   }
@@ -148,12 +213,13 @@ public:
     typename GoalHandle::SharedPtr goal;
     {
       std::lock_guard<std::mutex> lock(state_->mutex);
-      if (!handle->ended.exchange(true)) {
-        goal = handle->goal_handle;
+      const bool over = handle->ended;
+      if (!handle->finished.exchange(true) && !over) {
+        goal = handle->goal_handle();
       }
     }
     if (goal) {
-      state_->client->async_cancel_goal(goal);
+      cancel(state_, goal);
     }
   }
 
@@ -215,7 +281,7 @@ private:
       state->server_seen = false;
     }
     for (auto & [handle, activation] : waiting) {
-      if (!handle->ended) {  // deactivated while it waited: nothing to send
+      if (!handle->finished) {  // deactivated while it waited: nothing to send
         send(state, handle, activation);
       }
     }
@@ -259,9 +325,18 @@ private:
           // the event that ended a single activation is its result too, if its feedback was lost
           notify(state, handle, convert<typename ActionT::Result, Event>(*result.result), true);
         }
-        handle->ended = true;
+        handle->finished = true;
       };
     state->client->async_send_goal(activation, options);
+  }
+
+  /// Cancel a goal; one that ended meanwhile (its result came) is not cancelled.
+  static void cancel(const std::shared_ptr<State> & state, typename GoalHandle::SharedPtr goal)
+  {
+    try {
+      state->client->async_cancel_goal(goal);
+    } catch (const rclcpp_action::exceptions::UnknownGoalHandleError &) {
+    }
   }
 
   static void accepted(
@@ -271,23 +346,23 @@ private:
     if (!goal) {
       RCLCPP_WARN(state->logger, "an activation was refused");
       if (handle) {
-        handle->ended = true;
+        handle->finished = true;
       }
       return;
     }
     if (!handle) {
       // nobody holds the activation any more: it ends
-      state->client->async_cancel_goal(goal);
+      cancel(state, goal);
       return;
     }
-    bool ended;
+    bool finished;
     {
       std::lock_guard<std::mutex> lock(state->mutex);
-      handle->goal_handle = goal;
-      ended = handle->ended;
+      handle->set_goal_handle(goal);
+      finished = handle->finished;
     }
-    if (ended) {
-      state->client->async_cancel_goal(goal);
+    if (finished) {
+      cancel(state, goal);
     }
   }
 
@@ -301,7 +376,7 @@ private:
         return;
       }
       ++handle->events;
-      handle->ended = handle->single || from_result;
+      handle->finished = handle->single || from_result;
     }
     if (state->on_event) {
       state->on_event(event);
