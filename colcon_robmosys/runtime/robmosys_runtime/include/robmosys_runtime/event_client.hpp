@@ -52,14 +52,7 @@ public:
       if (activation_.finished) {
         return true;
       }
-      const auto goal = activation_.goal_handle();
-      if (!goal) {
-        return false;
-      }
-      const auto status = goal->get_status();
-      return status == action_msgs::msg::GoalStatus::STATUS_SUCCEEDED ||
-             status == action_msgs::msg::GoalStatus::STATUS_CANCELED ||
-             status == action_msgs::msg::GoalStatus::STATUS_ABORTED;
+      return ended_by_server(activation_.goal_handle());
     }
 
     /// Implicit, as the std::atomic<bool> it was.
@@ -92,6 +85,22 @@ private:
   std::atomic<bool> finished{false};
   /// Over: finished, or its goal ended by its server.
   const Ended ended;
+
+  /// Whether the status of a goal says its server ended it (false without a goal).
+  /**
+   * It takes the goal handle's lock, which rclcpp_action holds while it runs the
+   * callbacks of the goal: never ask it while holding a lock those callbacks take.
+   */
+  static bool ended_by_server(const typename GoalHandle::SharedPtr & goal)
+  {
+    if (!goal) {
+      return false;
+    }
+    const auto status = goal->get_status();
+    return status == action_msgs::msg::GoalStatus::STATUS_SUCCEEDED ||
+           status == action_msgs::msg::GoalStatus::STATUS_CANCELED ||
+           status == action_msgs::msg::GoalStatus::STATUS_ABORTED;
+  }
 
 private:
   template<typename>
@@ -213,12 +222,13 @@ public:
     typename GoalHandle::SharedPtr goal;
     {
       std::lock_guard<std::mutex> lock(state_->mutex);
-      const bool over = handle->ended;
-      if (!handle->finished.exchange(true) && !over) {
+      if (!handle->finished.exchange(true)) {
         goal = handle->goal_handle();
       }
     }
-    if (goal) {
+    // the status is read outside the lock: rclcpp_action runs the result and feedback
+    // callbacks (which take it) holding the goal handle's lock, which get_status() takes
+    if (goal && !Activation::ended_by_server(goal)) {
       cancel(state_, goal);
     }
   }
@@ -372,7 +382,7 @@ private:
   {
     {
       std::lock_guard<std::mutex> lock(state->mutex);
-      if (handle->ended) {
+      if (handle->finished) {
         return;
       }
       ++handle->events;
