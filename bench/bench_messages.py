@@ -37,11 +37,10 @@ import os
 from pathlib import Path
 import shutil
 import statistics
-import tempfile
 from typing import Sequence
 
-from bench_runtime import build, commands, cpp_skip_reason, HANDWRITTEN, HANDWRITTEN_CPP
-from bench_runtime import LISTENER, Run, run_pair, write_models
+from bench_runtime import commands, cpp_skip_reason, HANDWRITTEN, HANDWRITTEN_CPP
+from bench_runtime import LISTENER, pairs_workspace, Run, run_pair
 from benchlib import print_end, print_machine, ratio, table
 from colcon_robmosys.devtools import ros_env
 
@@ -211,6 +210,10 @@ def main(argv: Sequence[str] | None = None) -> int:
                         default=list(LANGUAGES),
                         help='which listeners to compare (default: both; C++ only where '
                              'rclcpp exists)')
+    parser.add_argument('--workspace', metavar='DIR',
+                        help='build the pairs in DIR and keep it (built again, not anew, '
+                             'when DIR has them: bench_runtime.py builds the same pairs); '
+                             'default: a temporary folder')
     args = parser.parse_args(argv)
     print_machine('P3: listener CPU per message received, generated vs hand-written '
                   '(pinned with taskset)')
@@ -220,10 +223,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     skip_cpp = cpp_skip_reason() if 'cpp' in args.languages else None
     languages = [LANGUAGES[name] for name in args.languages if name == 'python' or not skip_cpp]
     reports = []
-    with tempfile.TemporaryDirectory(prefix='robmosys-bench-msg-') as tmp:
-        root = Path(tmp)
-        write_models(root / 'src', cpp=LANGUAGES['cpp'] in languages)
-        install = build(root)
+    with pairs_workspace(args.workspace, LANGUAGES['cpp'] in languages,
+                         'robmosys-bench-msg-') as install:
         base_env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
         for language in languages:
             loads, runs = measure(language, install, base_env, args)

@@ -42,7 +42,7 @@ import statistics
 import sys
 import tempfile
 import time
-from typing import Any, Mapping, Sequence
+from typing import Any, Iterator, Mapping, Sequence
 
 import yaml
 
@@ -180,6 +180,28 @@ def write_models(src: Path, cpp: bool = False) -> None:
                 shutil.copyfile(GENERATED_CPP / name, code / name)
     if cpp:
         shutil.copytree(HANDWRITTEN_CPP, src / 'bench_handwritten_cpp')
+
+
+@contextlib.contextmanager
+def pairs_workspace(workspace: str | None, cpp: bool, prefix: str) -> Iterator[Path]:
+    """Yield the install folder of a built workspace of the pairs.
+
+    Without ``workspace``, written and built in a temporary folder, removed after. With
+    it, written there the first time and built (again: colcon builds what changed), and
+    kept: benchmarks of the same pairs (this one, bench_messages.py) share one build.
+    """
+    if workspace is None:
+        with tempfile.TemporaryDirectory(prefix=prefix) as tmp:
+            write_models(Path(tmp) / 'src', cpp=cpp)
+            yield build(Path(tmp))
+        return
+    root = Path(workspace)
+    if not (root / 'src').exists():
+        write_models(root / 'src', cpp=cpp)
+    elif (root / 'src' / str(TALKER_CPP['package'])).exists() != cpp:
+        raise SystemExit(f'{root}: its pairs were written {"without" if cpp else "with"} '
+                         'C++: remove it, or give another --workspace')
+    yield build(root)
 
 
 def build(root: Path) -> Path:
@@ -396,15 +418,16 @@ def main(argv: Sequence[str] | None = None) -> int:
                         default=list(PAIRS),
                         help='which pairs to compare (default: both; C++ only where '
                              'rclcpp exists)')
+    parser.add_argument('--workspace', metavar='DIR',
+                        help='build the pairs in DIR and keep it (built again, not anew, '
+                             'when DIR has them: bench_messages.py builds the same pairs); '
+                             'default: a temporary folder')
     args = parser.parse_args(argv)
     print_machine('run time: generated pub/sub pairs vs hand-written ones (Python; C++ '
                   'where rclcpp exists)')
     skip_cpp = cpp_skip_reason() if 'cpp' in args.languages else 'not asked for'
     languages = [lang for lang in args.languages if lang == 'python' or not skip_cpp]
-    with tempfile.TemporaryDirectory(prefix='robmosys-bench-run-') as tmp:
-        root = Path(tmp)
-        write_models(root / 'src', cpp='cpp' in languages)
-        install = build(root)
+    with pairs_workspace(args.workspace, 'cpp' in languages, 'robmosys-bench-run-') as install:
         base_env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
         runs: dict[tuple[str, str], list[Run]] = {}
         for round_ in range(args.rounds):

@@ -109,13 +109,27 @@ def test_colcon_benchmark_prints_ratios(capsys):
                      re.MULTILINE), out
 
 
+@pytest.fixture(scope='module')
+def pairs(tmp_path_factory):
+    """Return a folder for the workspace of the pairs, shared by two benchmarks."""
+    return str(tmp_path_factory.mktemp('pairs'))
+
+
+def test_a_kept_workspace_of_the_pairs_without_cpp_is_not_taken_for_cpp(tmp_path):
+    bench_runtime.write_models(tmp_path / 'src', cpp=False)
+    with pytest.raises(SystemExit, match='written without C[+][+]'):
+        with bench_runtime.pairs_workspace(str(tmp_path), True, 'unused-'):
+            pass
+
+
 @requires_ros
 @pytest.mark.integration
-def test_runtime_benchmark_prints_ratios(capsys):
+def test_runtime_benchmark_prints_ratios(capsys, pairs):
     """The generated pair and the hand-written one both exchange messages."""
     # the latency load differs only by a burst of 1: one load is enough here
     assert bench_runtime.main(['--seconds', '0.5', '--warmup', '0.2', '--rounds', '1',
-                               '--burst', '5', '--loads', 'throughput']) == 0
+                               '--burst', '5', '--loads', 'throughput',
+                               '--workspace', pairs]) == 0
     out = capsys.readouterr().out
     for kind in ('generated', 'hand-written'):
         received = re.search(rf'round 1, throughput, {kind}: (\d+) received', out)
@@ -130,13 +144,14 @@ def test_runtime_benchmark_prints_ratios(capsys):
 
 @requires_ros
 @pytest.mark.integration
-def test_messages_benchmark_prints_its_goals(capsys):
+def test_messages_benchmark_prints_its_goals(capsys, pairs):
     """The three listeners receive, pinned; every goal is printed met or NOT met.
 
-    C++ where rclcpp exists (not on PyPI: skipped, and the reason printed).
+    C++ where rclcpp exists (not on PyPI: skipped, and the reason printed). On the
+    workspace of the runtime benchmark's test, when it ran before: built again, not anew.
     """
     assert bench_messages.main(['--rounds', '1', '--seconds', '0.5', '--warmup', '0.2',
-                                '--burst', '2']) == 0
+                                '--burst', '2', '--workspace', pairs]) == 0
     out = capsys.readouterr().out
     if 'skipped: needs taskset' in out:
         pytest.skip('needs taskset and two CPUs')
