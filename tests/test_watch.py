@@ -244,21 +244,15 @@ import sys
 import rclpy
 from rclpy.parameter import Parameter
 from rcl_interfaces.srv import SetParameters
+from colcon_robmosys.devtools.system import answered
 rclpy.init()
 node = rclpy.create_node('operator')
 client = node.create_client(SetParameters, '/dummy_robot/laser_front/set_parameters')
 assert client.wait_for_service(timeout_sec=20)
-# rmw_fastrtps drops the answer to a client whose reader the service has not matched
-# yet (ros2/rmw_fastrtps#467): setting a value is idempotent, so ask again, as ros2
-# param would be run again
-for _ in range(4):
-    future = client.call_async(SetParameters.Request(parameters=[
-        Parameter('frame_id', value={value!r}).to_parameter_msg()]))
-    rclpy.spin_until_future_complete(node, future, timeout_sec=5)
-    if future.result() is not None:
-        break
-assert future.result() is not None, 'no answer in 4 calls'
-assert future.result().results[0].successful, future.result()
+# setting a value can be asked again, as ros2 param would be run again
+result = answered(client, SetParameters.Request(parameters=[
+    Parameter('frame_id', value={value!r}).to_parameter_msg()]), node)
+assert result.results[0].successful, result
 """
 
 
@@ -316,6 +310,7 @@ import json, sys, threading
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray
 from std_srvs.srv import Trigger
+from colcon_robmosys.devtools.system import answered
 system = sys.argv[1]
 rclpy.init()
 node = rclpy.create_node('asker')
@@ -325,12 +320,8 @@ answers = {}
 for service in ('conformance', 'report'):
     client = node.create_client(Trigger, f'/{system}_bringup/{service}')
     assert client.wait_for_service(timeout_sec=20)
-    for _ in range(10):
-        future = client.call_async(Trigger.Request())
-        rclpy.spin_until_future_complete(node, future, timeout_sec=2)
-        if future.result() is not None:
-            answers[service] = [future.result().success, future.result().message]
-            break
+    result = answered(client, Trigger.Request(), node)
+    answers[service] = [result.success, result.message]
 while not [a for a in arrays if any(s.name.startswith(system) for s in a.status)]:
     rclpy.spin_once(node, timeout_sec=1)
 array = [a for a in arrays if any(s.name.startswith(system) for s in a.status)][-1]

@@ -25,6 +25,38 @@ def wait_until(condition: Callable[[], bool], timeout: float, period: float = 0.
     return condition()
 
 
+def answered(client: Any, request: Any, spun: Any, timeout: float = 20.0,
+             attempt: float = 1.0) -> Any:
+    """Return the answer of a service to a request that can be asked again.
+
+    rmw_fastrtps drops the answer to a client whose reader of answers the
+    server has not matched within 100 ms (ros2/rmw_fastrtps#467, "failed to
+    send response"): a request that gets no answer within ``attempt`` seconds
+    is asked again, each time waiting twice as long, until ``timeout``. Only
+    for requests that do the same when asked twice (reading, setting a value).
+
+    :param spun: what completes the client's futures: its node, spun here, or
+      an executor it was added to (anything with ``spin_until_future_complete``)
+    :raises TimeoutError: if no answer came within ``timeout`` seconds
+    """
+    import rclpy
+    if hasattr(spun, 'spin_until_future_complete'):
+        spin = spun.spin_until_future_complete
+    else:
+        def spin(future: Any, timeout_sec: float) -> None:
+            rclpy.spin_until_future_complete(spun, future, timeout_sec=timeout_sec)
+    deadline = time.monotonic() + timeout
+    while True:
+        future = client.call_async(request)
+        spin(future, timeout_sec=max(0.0, min(attempt, deadline - time.monotonic())))
+        if future.done():
+            return future.result()
+        client.remove_pending_request(future)
+        if time.monotonic() >= deadline:
+            raise TimeoutError(f'{client.srv_name} did not answer within {timeout:g} s')
+        attempt *= 2
+
+
 #: transition label -> the state a node is in once it went through it
 GOAL_STATES = {'configure': 'inactive', 'activate': 'active', 'deactivate': 'inactive',
                'cleanup': 'unconfigured', 'shutdown': 'finalized'}
@@ -75,28 +107,19 @@ class LifecycleDriver:
         return client
 
     def _call(self, srv_type: type, name: str, request: Any, timeout: float,
-              attempt: float = 5.0) -> Any:
-        """Call a service whose request can be repeated, until it answers.
-
-        A request sent before the server's answer reaches this client (DDS
-        matches the two directions of a service one at a time) is answered
-        into the void: it is sent again after ``attempt`` seconds.
-        """
+              attempt: float = 1.0) -> Any:
+        """Call a service whose request can be repeated, until it answers (:func:`answered`)."""
         deadline = time.monotonic() + timeout
         client = self._client(srv_type, name, timeout)
-        while True:
-            future = client.call_async(request)
-            left = deadline - time.monotonic()
-            self.executor.spin_until_future_complete(future, timeout_sec=min(attempt, left))
-            if future.done():
-                return future.result()
-            client.remove_pending_request(future)
-            if time.monotonic() >= deadline:
-                raise TimeoutError(f'service {name} did not answer within {timeout} s')
+        return answered(client, request, self.executor,
+                        max(deadline - time.monotonic(), 0.0), attempt)
 
     def call(self, srv_type: type, name: str, request: Any, timeout: float = 20.0,
-             attempt: float = 5.0) -> Any:
-        """Call a service; a request that can be repeated is sent again every ``attempt`` s."""
+             attempt: float = 1.0) -> Any:
+        """Call a service; a request that can be repeated is asked again (see :func:`answered`).
+
+        :param attempt: how long the first request is waited for
+        """
         return self._call(srv_type, name, request, timeout, attempt)
 
     def state(self, fqn: str, timeout: float = 20.0) -> str:

@@ -6,6 +6,7 @@ import argparse
 import threading
 import time
 
+from conftest import answer, wait_until
 import rclpy
 from rclpy.executors import MultiThreadedExecutor, SingleThreadedExecutor
 from robmosys_runtime import manager
@@ -29,23 +30,12 @@ class Served:
         """
         Call a Trigger service; return its response, None if none came in timeout.
 
-        A request is asked again while no answer comes: rmw_fastrtps drops one to
-        a client whose reader of answers the server has not matched in 100 ms.
+        Asked again while no answer comes (see :func:`conftest.answer`).
         """
         client = self.client_node.create_client(Trigger, service)
         assert client.wait_for_service(timeout_sec=timeout)
-        deadline = time.monotonic() + timeout
-        attempt = 1.0
         try:
-            while time.monotonic() < deadline:
-                future = client.call_async(Trigger.Request())
-                self.asking.spin_until_future_complete(
-                    future, timeout_sec=min(attempt, deadline - time.monotonic()))
-                if future.done():
-                    return future.result()
-                client.remove_pending_request(future)
-                attempt *= 2
-            return None
+            return answer(client, Trigger.Request(), timeout, self.asking)
         finally:
             self.client_node.destroy_client(client)
 
@@ -158,7 +148,7 @@ def test_each_service_answers_from_the_moment_it_exists(monkeypatch):
         # made once the bring-up (of nothing here) is over
         assert made.watch is None
         made.start()
-        assert _wait_until(lambda: made.watch is not None, 10)
+        assert wait_until(lambda: made.watch is not None, 10)
         made.stopping.set()
     finally:
         node.destroy_node()
@@ -184,18 +174,9 @@ def test_the_watch_is_made_once_the_bring_up_is_over(monkeypatch):
         assert made.activation.running()
         time.sleep(1.0)
         assert made.watch is None
-        assert _wait_until(lambda: not made.activation.running(), 20)
-        assert _wait_until(lambda: made.watch is not None, 10)
+        assert wait_until(lambda: not made.activation.running(), 20)
+        assert wait_until(lambda: made.watch is not None, 10)
         made.stopping.set()
     finally:
         node.destroy_node()
         rclpy.try_shutdown(context=context)
-
-
-def _wait_until(condition, timeout):
-    deadline = time.monotonic() + timeout
-    while not condition():
-        if time.monotonic() > deadline:
-            return False
-        time.sleep(0.05)
-    return True

@@ -110,7 +110,9 @@ def test_queries_are_answered_while_active_only(spinning):
     assert client.wait_for_service(timeout_sec=10)
 
     def ask(value):
-        return answer(client, BasicTypes.Request(int32_value=value)).int32_value
+        response = answer(client, BasicTypes.Request(int32_value=value))
+        assert response is not None, 'no answer on qAdd in 20 s'
+        return response.int32_value
     assert ask(21) == 0  # inactive: the default response
     _lifecycle(node, 'activate')
     assert ask(21) == 42
