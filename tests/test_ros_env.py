@@ -14,6 +14,7 @@ import time
 import pytest
 
 from colcon_robmosys.devtools import ros_env
+from colcon_robmosys.devtools.system import wait_until
 
 PUBLISHER = """
 import rclpy
@@ -115,6 +116,30 @@ def test_run_kills_a_command_at_its_timeout() -> None:
     with pytest.raises(subprocess.TimeoutExpired):
         ros_env.run(['sh', '-c', 'sleep 30 & sleep 30'], env=os.environ, timeout=0.5)
     assert time.monotonic() - started < 10
+
+
+_DEAF = """
+import signal, time
+signal.signal(signal.SIGINT, signal.SIG_IGN)
+print('ready', flush=True)
+
+def stuck_in_shutdown():
+    time.sleep(60)
+
+stuck_in_shutdown()
+"""
+
+
+def test_a_python_process_deaf_to_sigint_is_killed_and_says_where_it_hung(capfd) -> None:
+    started = time.monotonic()
+    with ros_env.background([sys.executable, '-c', _DEAF], env=os.environ,
+                            stop_timeout=0.5) as deaf:
+        assert wait_until(lambda: 'ready' in deaf.output(), timeout=20)
+    assert deaf.proc.returncode is not None
+    assert time.monotonic() - started < 20
+    said = capfd.readouterr().err
+    assert 'did not end within 0.5 s of SIGINT; killed' in said, said
+    assert 'in stuck_in_shutdown' in said, said
 
 
 def test_publisher_reaches_subscriber_on_loopback() -> None:

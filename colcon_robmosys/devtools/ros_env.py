@@ -221,9 +221,16 @@ def background(cmd: Command, *, env: Mapping[str, str], stop_timeout: float = 5.
 
     On exit it gets SIGINT (a ROS node shuts down cleanly), then SIGKILL after
     ``stop_timeout`` seconds. Output goes to a file, so a chatty process never blocks.
+
+    A Python process that does not end on SIGINT says where it hung: it runs with
+    :mod:`faulthandler` on and gets SIGABRT before SIGKILL, and what it printed
+    then goes to this process's stderr (which pytest shows with a failure).
     """
+    command = [str(part) for part in cmd]
+    python = Path(command[0]).name.startswith('python') or command[0] == sys.executable
+    env = {**env, 'PYTHONFAULTHANDLER': '1'} if python else dict(env)
     with tempfile.TemporaryFile() as log:
-        proc = subprocess.Popen(cmd, env=dict(env), cwd=cwd, text=True,
+        proc = subprocess.Popen(cmd, env=env, cwd=cwd, text=True,
                                 stdin=subprocess.DEVNULL, stdout=log,
                                 stderr=subprocess.STDOUT, start_new_session=True)
         try:
@@ -234,6 +241,22 @@ def background(cmd: Command, *, env: Mapping[str, str], stop_timeout: float = 5.
             try:
                 proc.wait(timeout=stop_timeout)
             except subprocess.TimeoutExpired:
-                pass
+                _say_where_it_hung(' '.join(command), Background(proc, log), stop_timeout,
+                                   python)
             _kill_group(proc)  # children may outlive a leader that exited
             proc.wait()
+
+
+def _say_where_it_hung(command: str, process: Background, stop_timeout: float,
+                       python: bool) -> None:
+    """Print to stderr that a process did not end on SIGINT, with its stacks if Python's."""
+    proc = process.proc
+    before = len(process.output())
+    if python:
+        with contextlib.suppress(ProcessLookupError):
+            os.kill(proc.pid, signal.SIGABRT)  # faulthandler prints every thread's stack
+        with contextlib.suppress(subprocess.TimeoutExpired):
+            proc.wait(timeout=5)
+    command = command.replace('\n', ' ')
+    print(f'{command[:120]}: did not end within {stop_timeout:g} s of SIGINT; killed. '
+          f'What it printed then:\n{process.output()[before:][-8000:]}', file=sys.stderr)
