@@ -44,6 +44,8 @@ class RobmosysPackageSelection(PackageSelectionExtensionPoint):
             return
         in_workspace = {d.descriptor.name for d in decorators}
         skipped = set()
+        #: what is missing -> the packages skipped for it: one warning each
+        missing_for: dict[tuple[str, ...], list[str]] = {}
         for decorator in decorators:
             pkg = decorator.descriptor
             if not decorator.selected or pkg.type != 'robmosys.component':
@@ -59,12 +61,16 @@ class RobmosysPackageSelection(PackageSelectionExtensionPoint):
             if missing:
                 decorator.selected = False
                 skipped.add(pkg.name)
-                logger.warning(
-                    f"Skipping '{pkg.name}': it needs {', '.join(missing)}, "
-                    'which no prefix on AMENT_PREFIX_PATH or '
-                    'CMAKE_PREFIX_PATH provides (source a ROS 2 install that '
-                    'has them; `colcon robmosys-generate --output-dir DIR` '
-                    'writes its sources)')
+                missing_for.setdefault(tuple(missing), []).append(pkg.name)
+        for missing, names in missing_for.items():
+            listed = ', '.join(f"'{name}'" for name in sorted(names))
+            logger.warning(
+                f'Skipping {listed}: '
+                f"{'they need' if len(names) > 1 else 'it needs'} "
+                f"{', '.join(missing)}, which no prefix on AMENT_PREFIX_PATH "
+                'or CMAKE_PREFIX_PATH provides (source a ROS 2 install that '
+                'has them; `colcon robmosys-generate --output-dir DIR` writes '
+                f"{'their' if len(names) > 1 else 'its'} sources)")
         # what only runs a skipped component (a system launching it) still
         # builds: colcon would look for the skipped package's install
         if not skipped:
