@@ -51,7 +51,8 @@ def fork_map(function: Callable[[Share], Result],
     context = multiprocessing.get_context('fork')
     workers: list[tuple[Any, Any]] = []
     # what this process holds stays where it is: no collection in a worker
-    # touches (and so copies) the pages of objects it only reads
+    # touches (and so copies) the pages of objects it only reads; nor, here,
+    # goes through them again while this process does its own share
     gc.freeze()
     try:
         for share in shares[:-1]:
@@ -61,7 +62,6 @@ def fork_map(function: Callable[[Share], Result],
             process.start()
             sender.close()
             workers.append((process, receiver))
-        gc.unfreeze()
         own = function(shares[-1])
         return [*_receive(workers), own]
     finally:
