@@ -224,17 +224,14 @@ def _parameters(system: System, components: dict[str, Component],
 def _installed_models(workspace: Workspace, locations: Iterable[str]) -> dict[str, str]:
     """Return where the model files of some locations are installed, by a package made from each.
 
-    The first package of a file by name installs the copy a location names.
-    Only the files of the locations: a system names a few of a workspace's
-    thousand, and each system of it looked at all of them.
+    The first package of a file by name installs the copy a location names
+    (the workspace knows it of each file: each of a thousand systems looked
+    through every model).
     """
     wanted = {parts[0] for parts in map(_split_location, locations) if parts}
-    first: dict[str, str] = {}
-    for model in workspace.generated_models:
-        path = model.info.model_file
-        if path in wanted and (path not in first or model.package < first[path]):
-            first[path] = model.package
-    return {path: f'share/{package}/{INSTALLED_MODEL}' for path, package in first.items()}
+    first = {path: workspace.first_package_of(path) for path in wanted}
+    return {path: f'share/{package}/{INSTALLED_MODEL}'
+            for path, package in first.items() if package is not None}
 
 
 def _split_location(location: str) -> tuple[str, str, str] | None:

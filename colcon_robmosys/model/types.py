@@ -71,6 +71,8 @@ class Workspace:
         init=False, repr=False, compare=False)
     # the models that generate a package, asked for by every system's plan
     _generated: tuple[Model, ...] = field(init=False, repr=False, compare=False)
+    # model file -> the first package by name generated from it
+    _first_package: dict[str, str] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         of_files = [(f, f.models) for f in self.files]
@@ -90,6 +92,12 @@ class Workspace:
         object.__setattr__(self, '_generated', tuple(
             m for f, of_file in of_files if not f.installed for m in of_file
             if not (isinstance(m, (Component, ServiceDefinition)) and m.external)))
+        first: dict[str, str] = {}
+        for model in self._generated:
+            path = model.info.model_file
+            if path not in first or model.package < first[path]:
+                first[path] = model.package
+        object.__setattr__(self, '_first_package', first)
 
     @property
     def generated_models(self) -> tuple[Model, ...]:
@@ -100,6 +108,10 @@ class Workspace:
         underlay installed (built there).
         """
         return self._generated
+
+    def first_package_of(self, model_file: str) -> str | None:
+        """Return the first package by name generated from a model file, None if none is."""
+        return self._first_package.get(model_file)
 
     def components_in_file(self, model_file: str) -> int:
         """Return how many components of a model file generate a package."""
