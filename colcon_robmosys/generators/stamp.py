@@ -91,7 +91,7 @@ def templates_digest() -> str:
     return digest.hexdigest()
 
 
-def file_state(path: Path) -> FileState | None:
+def file_state(path: Path | str) -> FileState | None:
     """Return what a stamp records of a file, None if it is not there."""
     try:
         st = os.lstat(path)
@@ -181,8 +181,9 @@ class StampStore:
             return None
         if not isinstance(stamp, Stamp) or stamp.fingerprint != fingerprint:
             return None
+        base = os.fspath(out_dir)
         for relative, state in stamp.files.items():
-            if file_state(out_dir / relative) != state:
+            if file_state(os.path.join(base, relative)) != state:
                 return None
         for source, digest in stamp.user_files.items():
             if content_digest(Path(source)) != digest:
@@ -209,8 +210,9 @@ class StampStore:
         :param listing: the files in the user's folders before it read any
         """
         states = {}
+        base = os.fspath(out_dir)
         for relative in files:
-            state = file_state(out_dir / relative)
+            state = file_state(os.path.join(base, relative))
             if state is None:
                 return  # gone already: no stamp, the next run checks all
             states[relative] = state
