@@ -69,7 +69,6 @@ SERVER = textwrap.dedent("""
     from rclpy.node import Node
     from test_msgs.action import Fibonacci
     from test_msgs.srv import BasicTypes
-    from colcon_robmosys.devtools.system import answered
 
     rclpy.init(args=sys.argv)
     node = Node('unnamed')

@@ -233,16 +233,16 @@ def background(cmd: Command, *, env: Mapping[str, str], stop_timeout: float = 5.
         proc = subprocess.Popen(cmd, env=env, cwd=cwd, text=True,
                                 stdin=subprocess.DEVNULL, stdout=log,
                                 stderr=subprocess.STDOUT, start_new_session=True)
+        process = Background(proc, log)
         try:
-            yield Background(proc, log)
+            yield process
         finally:
             with contextlib.suppress(ProcessLookupError):
                 os.killpg(proc.pid, signal.SIGINT)
             try:
                 proc.wait(timeout=stop_timeout)
             except subprocess.TimeoutExpired:
-                _say_where_it_hung(' '.join(command), Background(proc, log), stop_timeout,
-                                   python)
+                _say_where_it_hung(' '.join(command), process, stop_timeout, python)
             _kill_group(proc)  # children may outlive a leader that exited
             proc.wait()
 
