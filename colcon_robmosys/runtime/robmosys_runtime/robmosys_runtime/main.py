@@ -4,6 +4,7 @@
 
 from __future__ import annotations
 
+import faulthandler
 import os
 import select
 import signal
@@ -36,6 +37,10 @@ EVENTS_SPIN_PERIOD = 3600.0
 #: a terminal's Ctrl-C reaches every process of its group, and ros2 launch then
 #: sends each its own SIGINT. A later one ends the process at once.
 SAME_REQUEST = 1.0
+#: seconds a process has to end once its nodes are brought down (after SIGINT
+#: or SIGTERM); one still there prints where each of its threads is, to
+#: stderr, and goes on ending
+ENDING_REPORT = 3.0
 
 
 def executor_kind(nodes: Sequence[Node] = (), named: Optional[str] = None) -> str:
@@ -134,7 +139,8 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     At SIGINT or SIGTERM (:func:`spin_until_signal`), the transitions
     requested of the nodes are refused from then on, and one under way is
     waited for (:func:`robmosys_runtime.transitions.close_transitions`);
-    then bring_down runs, the context is shut down and the nodes go.
+    then bring_down runs, the executor stops, the nodes go and the context
+    is shut down last.
     Return the exit status (0).
     """
     # the signals are this process's: rclpy's handler would shut the context
@@ -183,9 +189,13 @@ def _end(nodes: List[Node], bring_down: Optional[Callable[[List[Node]], Any]]) -
         bring_down(nodes)
 
 
-def spin(executor: Any) -> None:
+def spin(executor: Any, stopped: Optional[threading.Event] = None) -> None:
     """
     Spin until shutdown, through an entity destroyed while the executor gathered its wait set.
+
+    The spin ends with the context, or once the executor is shut down; an
+    events executor's once stopped is set too (it is shut down only when it
+    is not spinning: its spin ends, and the next one would go on).
 
     A transition (cleanup, shutdown) destroys a node's ports in one of the
     executor's threads while the spinning thread may be gathering them: rclpy
@@ -206,7 +216,7 @@ def spin(executor: Any) -> None:
             if isinstance(executor, Executor):
                 executor.spin()
             else:  # the EventsExecutor is no Executor
-                _spin_events(executor)
+                _spin_events(executor, stopped or threading.Event())
             return
         except (InvalidHandle, RuntimeError) as error:
             if not executor.context.ok() or not destroyed_meanwhile(error):
@@ -230,22 +240,28 @@ def destroyed_meanwhile(error: BaseException) -> bool:
 
 def spin_until_signal(executor: Any, bring_down: Callable[[], Any]) -> None:
     """
-    Spin until SIGINT or SIGTERM, then call bring_down() and shut the context down.
+    Spin until SIGINT or SIGTERM, then call bring_down() and stop the executor.
 
     Python runs a signal's handler in the main thread only, between two of
     its instructions, never while that thread waits in rcl: the executor
     spins in a thread of its own, and the main thread waits for the signal
     (``signal.set_wakeup_fd``) or for the spin to end (a callback raised,
     or the context was shut down): what ended the spin is raised here.
+
+    The executor's threads end here, the context still up: the nodes are
+    destroyed after, and the context shut down last. rclpy 9 (Kilted)
+    destroys every node of a context as it shuts it down, which under
+    threads still spinning them is what rclpy does not support (ros2/rclpy#663).
     """
     reading, writing = os.pipe()
     os.set_blocking(writing, False)
     ended: List[BaseException] = []
     done = threading.Event()
+    stopped = threading.Event()
 
     def spin_here() -> None:
         try:
-            spin(executor)
+            spin(executor, stopped)
         except BaseException as failure:  # noqa: B902 - raised in the main thread
             ended.append(failure)
         finally:
@@ -265,8 +281,10 @@ def spin_until_signal(executor: Any, bring_down: Callable[[], Any]) -> None:
             try:
                 bring_down()
             finally:
-                # the spin ends with the context: the pipe is not closed under it
-                rclpy.try_shutdown(context=executor.context)
+                report_if_still_ending()
+                stopped.set()
+                # the spin ends, and the callbacks under way: the pipe is not closed under it
+                stop_executor(executor)
         spinner.join()
     finally:
         signal.set_wakeup_fd(previous)
@@ -276,9 +294,26 @@ def spin_until_signal(executor: Any, bring_down: Callable[[], Any]) -> None:
         raise ended[0]
 
 
-def _spin_events(executor: Any) -> None:
+def report_if_still_ending(after: float = ENDING_REPORT) -> None:
+    """
+    Have the process print where its threads are if it is still there after some seconds.
+
+    What is left of the process's end once its nodes are brought down (the
+    callbacks under way, its threads joined, its nodes destroyed, rclpy shut
+    down, the interpreter's own end) takes well under a second. A process
+    that hangs there would be killed by whoever asked it to end, and say
+    nothing: faulthandler's own thread prints the Python stack of each
+    thread to stderr, even while one holds the GIL.
+    """
+    try:
+        faulthandler.dump_traceback_later(after, exit=False)
+    except (OSError, RuntimeError, ValueError):
+        pass  # stderr has no file descriptor (closed, or replaced in a test)
+
+
+def _spin_events(executor: Any, stopped: threading.Event) -> None:
     never: Future[None] = Future()
-    while executor.context.ok():
+    while executor.context.ok() and not stopped.is_set():
         executor.spin_until_future_complete(never, timeout_sec=EVENTS_SPIN_PERIOD)
 
 
@@ -299,12 +334,12 @@ def stop_executor(executor: Any) -> None:
 
 def _settle_callbacks(executor: Any, node: Node) -> None:
     """
-    Take the outcome of the callbacks that ended after the executor stopped.
+    Take the outcome of the callbacks that ended after the executor's last spin.
 
-    SIGINT or SIGTERM shut the context down, which destroys the node under
-    the callbacks still running (a transition, say): they fail with it, and
     rclpy would print each failure when it collects the task ("exception was
-    never retrieved"). Those failures are the shutdown; any other is logged.
+    never retrieved"). One that failed because the context went down (a
+    callback failed and ended the spin, others still running) is the
+    shutdown; any other is logged.
     rclpy keeps the tasks of a MultiThreadedExecutor in ``_futures`` (7.1, 9.1).
     """
     for task in list(getattr(executor, '_futures', ())):

@@ -23,8 +23,11 @@ from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Se
 from ament_index_python.packages import get_package_prefix, PackageNotFoundError
 from robmosys_runtime.output import say
 
-#: seconds each process has to end after SIGINT, before SIGKILL
+#: seconds each process has to end after SIGINT, before SIGABRT and SIGKILL
 STOP_TIMEOUT = 10.0
+#: seconds a process that did not end of SIGINT has, after SIGABRT, to print
+#: where its threads are (Python's faulthandler), before SIGKILL
+ABORT_GRACE = 3.0
 
 
 def command(instance: Dict[str, Any], params_file: str) -> List[str]:
@@ -87,7 +90,9 @@ class Processes:
         """
         self._processes[name] = subprocess.Popen(
             list(args), stdin=subprocess.DEVNULL, start_new_session=True,
-            preexec_fn=self._preexec, pass_fds=tuple(pass_fds))
+            preexec_fn=self._preexec, pass_fds=tuple(pass_fds),
+            # a Python process that hangs prints its threads' stacks at SIGABRT
+            env={'PYTHONFAULTHANDLER': '1', **os.environ})
 
     def started(self) -> bool:
         """Tell whether a process was started."""
@@ -129,14 +134,14 @@ class Processes:
         self._interrupted.add(name)
         process = self._processes.get(name)
         if process is not None and process.poll() is None:
-            try:
-                os.killpg(process.pid, signal.SIGINT)
-            except ProcessLookupError:
-                pass
+            self._signal(process, signal.SIGINT)
 
     def stop(self, timeout: float = STOP_TIMEOUT) -> bool:
         """
         Ask every process to end (SIGINT), then kill what is left after timeout.
+
+        A process left gets SIGABRT first: a Python one prints where each of
+        its threads is (``PYTHONFAULTHANDLER``), which names the hang.
 
         :returns: whether every process ended of SIGINT, none needing SIGKILL
         """
@@ -144,28 +149,48 @@ class Processes:
         for name in self._processes:
             if name not in self._interrupted:
                 self.interrupt(name)
+        late = self._wait(self._processes, timeout)
+        # never expected: a process ends within a few seconds of SIGINT. One
+        # at a time, so that the stacks do not run into each other; those
+        # left after twice ABORT_GRACE are killed as they are
+        deadline = time.monotonic() + 2 * ABORT_GRACE
+        for name in late:
+            if time.monotonic() >= deadline:
+                say('error', f'{name} did not end within {timeout:g} s of SIGINT: SIGKILL')
+                continue
+            say('error', f'{name} did not end within {timeout:g} s of SIGINT: SIGABRT, '
+                'for the stacks of its threads, then SIGKILL')
+            self._signal(self._processes[name], signal.SIGABRT)
+            self._wait({name: self._processes[name]},
+                       min(ABORT_GRACE, deadline - time.monotonic()))
+        if late:
+            self.kill()
+        return not late
+
+    @staticmethod
+    def _wait(processes: Dict[str, subprocess.Popen[bytes]], timeout: float) -> List[str]:
+        """Wait for the processes to end within timeout; return the names of those that did not."""
         deadline = time.monotonic() + timeout
         late = []
-        for name, process in self._processes.items():
+        for name, process in processes.items():
             try:
                 process.wait(max(0.0, deadline - time.monotonic()))
             except subprocess.TimeoutExpired:
                 late.append(name)
-        # never expected: a process ends within a few seconds of SIGINT
-        for name in late:
-            say('error', f'{name} did not end within {timeout:g} s of SIGINT: SIGKILL')
-        if late:
-            self.kill()
-        return not late
+        return late
+
+    @staticmethod
+    def _signal(process: subprocess.Popen[bytes], signum: int) -> None:
+        try:
+            os.killpg(process.pid, signum)
+        except ProcessLookupError:
+            pass
 
     def kill(self) -> None:
         """End every process at once."""
         self._stopping.set()
         for process in self._processes.values():
-            try:
-                os.killpg(process.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
+            self._signal(process, signal.SIGKILL)
 
 
 def node_arguments(instance: Dict[str, Any], params_file: str) -> List[str]:

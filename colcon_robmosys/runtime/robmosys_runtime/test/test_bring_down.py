@@ -7,7 +7,7 @@ import subprocess
 import sys
 import time
 
-from robmosys_runtime.main import EXECUTORS, SAME_REQUEST
+from robmosys_runtime.main import ENDING_REPORT, EXECUTORS, SAME_REQUEST
 
 #: a process of one lifecycle node that brings itself down at SIGINT (run_nodes'
 #: bring_down), as the shared process of bringup does; argv: executor, how long
@@ -28,6 +28,15 @@ class Journaled(LifecycleNode):
     def on_cleanup(self, state):
         print('on_cleanup', flush=True)
         return super().on_cleanup(state)
+
+    def destroy_node(self):
+        if sys.argv[3] == 'hang':
+            hangs_being_destroyed()
+        super().destroy_node()
+
+
+def hangs_being_destroyed():
+    time.sleep(60)
 
 
 def up(nodes):
@@ -52,11 +61,11 @@ sys.exit(run_nodes([lambda: Journaled('journaled')], executor_name=sys.argv[1],
 """
 
 
-def _bringing_itself_down(executor, takes=0.0, fail=False):
+def _bringing_itself_down(executor, takes=0.0, fail=False, hang=False):
     process = subprocess.Popen(
         [sys.executable, '-c', BRINGS_ITSELF_DOWN, executor, str(takes),
-         'fail' if fail else 'ok'], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-        text=True)
+         'fail' if fail else 'hang' if hang else 'ok'], stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT, text=True)
     lines = []
     for line in process.stdout:
         lines.append(line.rstrip())
@@ -105,3 +114,24 @@ def test_a_callback_that_fails_ends_the_process_bringing_nothing_down():
     assert code != 0, lines
     assert 'ZeroDivisionError: division by zero' in lines, lines
     assert 'on_deactivate' not in lines
+
+
+def test_a_process_still_ending_after_its_context_says_where_its_threads_are():
+    # what a process that hangs on its way out prints, before whoever asked
+    # it to end kills it: the stack of each of its threads, the hang named
+    process, lines = _bringing_itself_down('single-threaded', hang=True)
+    try:
+        process.send_signal(signal.SIGINT)
+        start = time.monotonic()
+        for line in process.stdout:
+            lines.append(line.rstrip())
+            if 'in hangs_being_destroyed' in line:
+                break
+        waited = time.monotonic() - start
+        assert any('in hangs_being_destroyed' in line for line in lines), lines
+        assert ENDING_REPORT - 0.5 < waited < ENDING_REPORT + 10, (waited, '\n'.join(lines))
+        # it goes on hanging: the report does not end it
+        assert process.poll() is None
+    finally:
+        process.kill()
+        process.communicate()

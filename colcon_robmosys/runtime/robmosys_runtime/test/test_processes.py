@@ -39,9 +39,11 @@ def test_stop_tells_whether_a_process_needed_sigkill(capfd):
     deaf = Processes(on_exit=None)
     for name in ('planner', 'mapper'):
         deaf.start(name, [sys.executable, '-c', 'import signal, sys, time\n'
+                          'def deaf_to_sigint():\n'
+                          '    time.sleep(60)\n'
                           'signal.signal(signal.SIGINT, signal.SIG_IGN)\n'
                           'print("ready", flush=True)\n'
-                          'time.sleep(60)'])
+                          'deaf_to_sigint()'])
     out = []
 
     def ready():
@@ -50,10 +52,12 @@ def test_stop_tells_whether_a_process_needed_sigkill(capfd):
     assert wait_until(ready, timeout=10)
     assert not deaf.stop(timeout=0.5)
     assert wait_until(lambda: deaf.state('planner') == deaf.state('mapper') == 'exited')
-    # each one named
+    # each one named, and where it hung: SIGABRT made each print its stack
     said = capfd.readouterr().err
-    assert 'planner did not end within 0.5 s of SIGINT: SIGKILL' in said
-    assert 'mapper did not end within 0.5 s of SIGINT: SIGKILL' in said
+    for name in ('planner', 'mapper'):
+        assert f'{name} did not end within 0.5 s of SIGINT: SIGABRT, for the stacks of ' \
+            'its threads, then SIGKILL' in said
+    assert said.count('in deaf_to_sigint') == 2, said
 
 
 def _instance(name, package, **extra):
