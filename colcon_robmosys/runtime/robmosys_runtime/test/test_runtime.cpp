@@ -108,6 +108,51 @@ private:
   std::thread spinner_;
 };
 
+/// The two sides of an event port, a sensor that fires and a watcher that
+/// activates, each a node of its own, spun by a runtime of their own.
+struct EventSides
+{
+  explicit EventSides(const std::string & prefix)
+  : sensor(std::make_shared<rclcpp::Node>(prefix + "sensor")),
+    watcher(std::make_shared<rclcpp::Node>(prefix + "watcher"))
+  {
+  }
+
+  /// Spin both nodes, with the ports made so far.
+  void start()
+  {
+    runtime.spin(sensor);
+    runtime.spin(watcher);
+    runtime.start();
+  }
+
+  Runtime runtime;  // first: rclcpp is initialised before the nodes are made
+  std::shared_ptr<rclcpp::Node> sensor;
+  std::shared_ptr<rclcpp::Node> watcher;
+};
+
+/// An activation of an event port: events of at least order hold its condition.
+Fibonacci::Goal activation_of(int order)
+{
+  Fibonacci::Goal activation;
+  activation.order = order;
+  return activation;
+}
+
+/// An event whose value is first.
+Fibonacci::Feedback event_of(int first)
+{
+  Fibonacci::Feedback event;
+  event.sequence = {first};
+  return event;
+}
+
+/// The condition of the events of the tests: the event's value reaches the activation's order.
+bool reaches(const Fibonacci::Goal & activation, const Fibonacci::Feedback & event)
+{
+  return event.sequence.at(0) >= activation.order;
+}
+
 /// A component that counts periodically and publishes the count.
 class Counter : public robmosys_runtime::ComponentNode
 {
@@ -266,94 +311,65 @@ void query_client()
 
 void events_reach_the_activations_whose_condition_holds()
 {
-  Runtime runtime;
-  auto sensor = std::make_shared<rclcpp::Node>("sensor");
-  auto watcher = std::make_shared<rclcpp::Node>("watcher");
+  EventSides sides("");
   robmosys_runtime::EventServer<Fibonacci> server(
-    sensor.get(), "event", rclcpp::QoS(10), nullptr,
-    [](const Fibonacci::Goal & activation, const Fibonacci::Feedback & event) {
-      return event.sequence.at(0) >= activation.order;
-    });
+    sides.sensor.get(), "event", rclcpp::QoS(10), nullptr, reaches);
   std::atomic<int> events{0};
   robmosys_runtime::EventClient<Fibonacci> client(
-    watcher.get(), "event", rclcpp::QoS(10),
+    sides.watcher.get(), "event", rclcpp::QoS(10),
     [&events](const Fibonacci::Feedback &) {++events;});
-  runtime.spin(sensor);
-  runtime.spin(watcher);
-  runtime.start();
+  sides.start();
   EXPECT(client.wait_for_server(10s));
-  Fibonacci::Goal activation;
-  activation.order = 10;
-  auto handle = client.activate(activation);
+  auto handle = client.activate(activation_of(10));
   EXPECT(wait_until([&handle]() {return static_cast<bool>(handle->goal_handle());}));
-  Fibonacci::Feedback low, high;
-  low.sequence = {3};
-  high.sequence = {12};
-  EXPECT(server.fire(low) == 0u);
-  EXPECT(server.fire(high) == 1u);
+  EXPECT(server.fire(event_of(3)) == 0u);
+  EXPECT(server.fire(event_of(12)) == 1u);
   EXPECT(wait_until([&events]() {return events == 1;}));
   bool refused = false;
   try {
-    client.activate(activation, true);
+    client.activate(activation_of(10), true);
   } catch (const std::invalid_argument &) {
     refused = true;
   }
   EXPECT(refused);
   client.deactivate(handle);
   EXPECT(handle->ended);
-  runtime.stop();
+  sides.runtime.stop();
 }
 
 void an_activation_made_before_the_server_is_there_is_sent_once_it_is()
 {
   // a goal sent to no server is lost: so would be every event of its activation
-  Runtime runtime;
-  auto sensor = std::make_shared<rclcpp::Node>("late_sensor");
-  auto watcher = std::make_shared<rclcpp::Node>("late_watcher");
+  EventSides sides("late_");
   std::atomic<int> events{0};
   robmosys_runtime::EventClient<Fibonacci> client(
-    watcher.get(), "late_event", rclcpp::QoS(10),
+    sides.watcher.get(), "late_event", rclcpp::QoS(10),
     [&events](const Fibonacci::Feedback &) {++events;});
-  runtime.spin(sensor);
-  runtime.spin(watcher);
-  runtime.start();
-  Fibonacci::Goal activation;
-  activation.order = 10;
-  auto early = client.activate(activation);
-  auto dropped = client.activate(activation);
+  sides.start();
+  auto early = client.activate(activation_of(10));
+  auto dropped = client.activate(activation_of(10));
   client.deactivate(dropped);  // deactivated while it waited: never sent
   std::this_thread::sleep_for(500ms);
   EXPECT(!early->goal_handle() && !early->ended);
   robmosys_runtime::EventServer<Fibonacci> server(
-    sensor.get(), "late_event", rclcpp::QoS(10), nullptr,
-    [](const Fibonacci::Goal & kept, const Fibonacci::Feedback & event) {
-      return event.sequence.at(0) >= kept.order;
-    });
-  Fibonacci::Feedback high;
-  high.sequence = {12};
+    sides.sensor.get(), "late_event", rclcpp::QoS(10), nullptr, reaches);
   // the events of a sensor keep coming: one sent before the server's publisher
   // matched the client's subscription is not the last
-  EXPECT(wait_until([&]() {return server.fire(high) >= 1u && events >= 1;}));
-  EXPECT(server.fire(high) == 1u);  // the one that waited, not the dropped one
+  EXPECT(wait_until([&]() {return server.fire(event_of(12)) >= 1u && events >= 1;}));
+  EXPECT(server.fire(event_of(12)) == 1u);  // the one that waited, not the dropped one
   EXPECT(dropped->events == 0u && !dropped->goal_handle());
-  runtime.stop();
+  sides.runtime.stop();
 }
 
 void an_activation_its_server_ended_is_ended_without_its_result()
 {
-  Runtime runtime;
-  auto sensor = std::make_shared<rclcpp::Node>("resultless_sensor");
-  auto watcher = std::make_shared<rclcpp::Node>("resultless_watcher");
+  EventSides sides("resultless_");
   robmosys_runtime::EventClient<Fibonacci> client(
-    watcher.get(), "resultless_event", rclcpp::QoS(10));
-  runtime.spin(sensor);
-  runtime.spin(watcher);
-  runtime.start();
-  Fibonacci::Goal activation;
-  activation.order = 1;
+    sides.watcher.get(), "resultless_event", rclcpp::QoS(10));
+  sides.start();
   // activated before the server is there: sent once the server has matched the client
-  auto handle = client.activate(activation);
-  ResultlessServer server(sensor.get(), "resultless_event");
+  auto handle = client.activate(activation_of(1));
+  ResultlessServer server(sides.sensor.get(), "resultless_event");
   EXPECT(wait_until([&handle]() {return static_cast<bool>(handle->goal_handle());}));
   EXPECT(server.goals() == 1u && !handle->ended);
   server.abort();
@@ -363,7 +379,7 @@ void an_activation_its_server_ended_is_ended_without_its_result()
   // deactivating an activation its server ended cancels nothing, and does not throw
   client.deactivate(handle);
   EXPECT(handle->finished && handle->ended);
-  runtime.stop();
+  sides.runtime.stop();
 }
 
 void component_ports_live_from_configure_to_cleanup()
