@@ -20,7 +20,8 @@ if TYPE_CHECKING:
     from robmosys_runtime.activity import Activity  # noqa: F401
     from robmosys_runtime.events import (  # noqa: F401
         copy_fields, EventActivation, EventClient, EventServer)
-    from robmosys_runtime.main import executor_threads, run  # noqa: F401
+    from robmosys_runtime.executors import executor_threads  # noqa: F401
+    from robmosys_runtime.main import run  # noqa: F401
     from robmosys_runtime.node import ComponentNode  # noqa: F401
     from robmosys_runtime.parameters import (  # noqa: F401
         map_entries, ParameterRule, ParameterRules, required_set)
@@ -33,7 +34,7 @@ _MODULES = {
     'ActionClientPort': 'ports', 'Activity': 'activity', 'ComponentNode': 'node',
     'EventActivation': 'events', 'EventClient': 'events', 'EventServer': 'events',
     'ParameterRule': 'parameters', 'ParameterRules': 'parameters', 'QueryClient': 'ports',
-    'copy_fields': 'events', 'executor_threads': 'main', 'map_entries': 'parameters',
+    'copy_fields': 'events', 'executor_threads': 'executors', 'map_entries': 'parameters',
     'required_set': 'parameters',
     'run': 'main', 'wait_for': 'ports',
 }

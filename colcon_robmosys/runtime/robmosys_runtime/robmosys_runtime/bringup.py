@@ -33,7 +33,8 @@ from robmosys_runtime.arguments import (
 from robmosys_runtime.levels import Outcome, report
 from robmosys_runtime.locations import resolve_locations
 from robmosys_runtime.output import say
-from robmosys_runtime.processes import NotInstalled, plan_processes, Processes, PYTHON_GROUP
+from robmosys_runtime.processes import NotInstalled, plan_processes, PYTHON_GROUP
+from robmosys_runtime.supervision import Processes
 from robmosys_runtime.told import (
     brings_itself_down, read_steps, read_told, read_told_file, tellers, tells_all, told_file)
 

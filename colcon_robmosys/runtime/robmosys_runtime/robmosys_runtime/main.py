@@ -15,21 +15,13 @@ from typing import Any, Callable, List, Optional, Sequence
 
 import rclpy
 from rclpy.exceptions import InvalidHandle
-from rclpy.executors import Executor, ExternalShutdownException, MultiThreadedExecutor
-from rclpy.executors import SingleThreadedExecutor
+from rclpy.executors import Executor, ExternalShutdownException
 from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
 from rclpy.task import Future
+from robmosys_runtime.executors import executor_kind, make_executor
 from robmosys_runtime.transitions import close_transitions, TRANSITION_GRACE
 
-
-#: the threads a node needs beside the others of its process, when it does not
-#: say (a node not generated from a model): threads to spare for blocking calls
-DEFAULT_MIN_THREADS = 4
-
-
-#: the executors a model names, from the cheapest to the most capable
-EXECUTORS = ('events', 'single-threaded', 'multi-threaded')
 
 #: seconds of each spin of an events executor (see :func:`spin`)
 EVENTS_SPIN_PERIOD = 3600.0
@@ -41,48 +33,6 @@ SAME_REQUEST = 1.0
 #: or SIGTERM); one still there prints where each of its threads is, to
 #: stderr, and goes on ending
 ENDING_REPORT = 3.0
-
-
-def executor_kind(nodes: Sequence[Node] = (), named: Optional[str] = None) -> str:
-    """
-    Return the executor a process spins its nodes with: named, or what its nodes need.
-
-    A generated node states its ``executor_name`` (its model's, or the fastest
-    that runs its activities correctly); nodes of one process take the most
-    capable any of them needs. A node that does not say (not generated from
-    a model) is spun as before: by a multi-threaded executor.
-    """
-    if named is not None:
-        if named not in EXECUTORS:
-            raise ValueError(f'unknown executor {named!r}: one of {", ".join(EXECUTORS)}')
-        return named
-    kinds = [getattr(node, 'executor_name', 'multi-threaded') for node in nodes]
-    return max(kinds, key=EXECUTORS.index, default='multi-threaded')
-
-
-def make_executor(kind: str, nodes: Sequence[Node] = ()) -> Executor:
-    """Return an executor of a kind (:data:`EXECUTORS`) for the nodes of a process."""
-    if kind == 'events':
-        from rclpy.experimental import EventsExecutor
-        return EventsExecutor()
-    if kind == 'single-threaded':
-        return SingleThreadedExecutor()
-    return MultiThreadedExecutor(num_threads=executor_threads(nodes))
-
-
-def executor_threads(nodes: Sequence[Node] = ()) -> int:
-    """
-    Return how many threads the executor of a component's process has.
-
-    A generated node states its ``min_threads``: one per callback group (each
-    activity, each client) and one more, so that an activity blocked in a call
-    never starves the thread that delivers the answer, nor the lifecycle and
-    parameter services. The nodes of one process add up; a process never has
-    fewer threads than CPUs, which is what rclpy's MultiThreadedExecutor
-    takes by default (and what a hand-written node spins with).
-    """
-    needed = sum(getattr(node, 'min_threads', DEFAULT_MIN_THREADS) for node in nodes)
-    return max(os.cpu_count() or 1, needed or DEFAULT_MIN_THREADS)
 
 
 #: when this process was first asked to end (SIGINT or SIGTERM), by time.monotonic()
@@ -109,8 +59,9 @@ def run(node_factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
     """
     Spin the node node_factory() until SIGINT or SIGTERM, then shut down cleanly.
 
-    The node's ``executor_name`` says what spins it (see :func:`executor_kind`).
-    Return the exit status of the process (0).
+    The node's ``executor_name`` says what spins it (see
+    :func:`robmosys_runtime.executors.executor_kind`). Return the exit
+    status of the process (0).
     """
     return run_nodes([node_factory], args)
 
@@ -123,11 +74,12 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     """
     Spin several nodes in one process until SIGINT or SIGTERM, then shut down cleanly.
 
-    :param executor_name: the executor of the process (:data:`EXECUTORS`); by
-        default the most capable one its nodes need (:func:`executor_kind`). On
-        a multi-threaded one, every node has the threads it would have in a
-        process of its own (see :func:`executor_threads`), so a blocking call
-        of one cannot starve the others.
+    :param executor_name: the executor of the process (one of
+        :data:`robmosys_runtime.executors.EXECUTORS`); by default the most
+        capable one its nodes need (:func:`~robmosys_runtime.executors.executor_kind`).
+        On a multi-threaded one, every node has the threads it would have in
+        a process of its own (:func:`~robmosys_runtime.executors.executor_threads`),
+        so a blocking call of one cannot starve the others.
     :param before_spin: run once with the nodes when they are made, before any
         callback is.
     :param unspun: nodes made first, before the others, and never spun (they
@@ -189,13 +141,15 @@ def _end(nodes: List[Node], bring_down: Optional[Callable[[List[Node]], Any]]) -
         bring_down(nodes)
 
 
-def spin(executor: Any, stopped: Optional[threading.Event] = None) -> None:
+def spin(executor: Any, stopped: Optional[Future[None]] = None) -> None:
     """
     Spin until shutdown, through an entity destroyed while the executor gathered its wait set.
 
-    The spin ends with the context, or once the executor is shut down; an
-    events executor's once stopped is set too (it is shut down only when it
-    is not spinning: its spin ends, and the next one would go on).
+    The spin ends with the context, or once the executor is shut down, or
+    once stopped is done (:func:`end_spin`). The executor then stays whole
+    while the callbacks under way end (:func:`stop_executor`): rclpy's
+    shutdown() drops what they wake it with, and rclpy 7.1 (Jazzy) returns
+    before they end.
 
     A transition (cleanup, shutdown) destroys a node's ports in one of the
     executor's threads while the spinning thread may be gathering them: rclpy
@@ -213,10 +167,12 @@ def spin(executor: Any, stopped: Optional[threading.Event] = None) -> None:
     """
     while True:
         try:
-            if isinstance(executor, Executor):
+            if not isinstance(executor, Executor):  # the EventsExecutor is none
+                _spin_events(executor, stopped or Future())
+            elif stopped is None:
                 executor.spin()
-            else:  # the EventsExecutor is no Executor
-                _spin_events(executor, stopped or threading.Event())
+            else:
+                executor.spin_until_future_complete(stopped)
             return
         except (InvalidHandle, RuntimeError) as error:
             if not executor.context.ok() or not destroyed_meanwhile(error):
@@ -257,7 +213,7 @@ def spin_until_signal(executor: Any, bring_down: Callable[[], Any]) -> None:
     os.set_blocking(writing, False)
     ended: List[BaseException] = []
     done = threading.Event()
-    stopped = threading.Event()
+    stopped: Future[None] = Future()
 
     def spin_here() -> None:
         try:
@@ -282,9 +238,9 @@ def spin_until_signal(executor: Any, bring_down: Callable[[], Any]) -> None:
                 bring_down()
             finally:
                 report_if_still_ending()
-                stopped.set()
-                # the spin ends, and the callbacks under way: the pipe is not closed under it
-                stop_executor(executor)
+                end_spin(stopped)
+        # the spin ends (the pipe is not closed under it); the callbacks under
+        # way end in run_nodes (stop_executor)
         spinner.join()
     finally:
         signal.set_wakeup_fd(previous)
@@ -311,25 +267,36 @@ def report_if_still_ending(after: float = ENDING_REPORT) -> None:
         pass  # stderr has no file descriptor (closed, or replaced in a test)
 
 
-def _spin_events(executor: Any, stopped: threading.Event) -> None:
-    never: Future[None] = Future()
-    while executor.context.ok() and not stopped.is_set():
-        executor.spin_until_future_complete(never, timeout_sec=EVENTS_SPIN_PERIOD)
+def _spin_events(executor: Any, stopped: Future[None]) -> None:
+    while executor.context.ok() and not stopped.done():
+        executor.spin_until_future_complete(stopped, timeout_sec=EVENTS_SPIN_PERIOD)
+
+
+def end_spin(stopped: Future[None]) -> None:
+    """
+    End the spin of :func:`spin` given stopped, the executor whole.
+
+    Its spin_until_future_complete() returns: the future wakes the executor
+    (an events one too). Waking it alone does not end rclpy's spin_once().
+    """
+    stopped.set_result(None)
 
 
 def stop_executor(executor: Any) -> None:
     """
-    Stop the executor and wait for the callbacks it is running to end.
+    Wait for the callbacks the executor is running to end, then shut it down (its spin ended).
 
-    rclpy 9.1 (Kilted) waits for the threads of a MultiThreadedExecutor in
-    shutdown(); rclpy 7.1 (Jazzy) returns at once, and a callback still
-    running would then meet its node destroyed: its threads are waited on
-    here (a second SIGINT or SIGTERM still ends the process at once).
+    The callbacks of a MultiThreadedExecutor run on its threads: they end
+    first, the executor whole. rclpy's shutdown() destroys the guard condition
+    a callback that ends wakes the executor with (an action's goal done:
+    AttributeError, Jazzy), and rclpy 7.1 (Jazzy) returns from it before the
+    callbacks end, which would then meet their nodes destroyed. A second
+    SIGINT or SIGTERM still ends the process at once.
     """
-    executor.shutdown()
     pool = getattr(executor, '_executor', None)
     if pool is not None:
         pool.shutdown(wait=True)
+    executor.shutdown()
 
 
 def _settle_callbacks(executor: Any, node: Node) -> None:

@@ -26,8 +26,9 @@ from robmosys_runtime.activation import SystemActivation
 from robmosys_runtime.heartbeat import Heartbeat
 from robmosys_runtime.levels import report
 from robmosys_runtime.output import say
-from robmosys_runtime.processes import plan_processes, Processes, shared_python
+from robmosys_runtime.processes import plan_processes, shared_python
 from robmosys_runtime.reports import GRACE, Reports
+from robmosys_runtime.supervision import Processes
 from robmosys_runtime.watch import Watch, watch_diagnostics
 from std_srvs.srv import Trigger
 

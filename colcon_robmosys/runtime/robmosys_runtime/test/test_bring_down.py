@@ -7,7 +7,8 @@ import subprocess
 import sys
 import time
 
-from robmosys_runtime.main import ENDING_REPORT, EXECUTORS, SAME_REQUEST
+from robmosys_runtime.executors import EXECUTORS
+from robmosys_runtime.main import ENDING_REPORT, SAME_REQUEST
 
 #: a process of one lifecycle node that brings itself down at SIGINT (run_nodes'
 #: bring_down), as the shared process of bringup does; argv: executor, how long

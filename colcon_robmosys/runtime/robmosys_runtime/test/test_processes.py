@@ -9,7 +9,8 @@ import pytest
 from robmosys_runtime import processes
 from robmosys_runtime.cpp_container import container_node, main, program_arguments
 from robmosys_runtime.processes import (
-    NotInstalled, plan_processes, Processes, shared_arguments, SharedArguments)
+    NotInstalled, plan_processes, shared_arguments, SharedArguments)
+from robmosys_runtime.supervision import Processes
 
 
 def test_a_process_is_starting_then_running_then_exited():

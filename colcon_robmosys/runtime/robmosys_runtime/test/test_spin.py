@@ -164,7 +164,7 @@ def test_a_process_has_the_threads_its_nodes_need(monkeypatch):
     import os
     from types import SimpleNamespace
 
-    from robmosys_runtime.main import DEFAULT_MIN_THREADS, executor_threads
+    from robmosys_runtime.executors import DEFAULT_MIN_THREADS, executor_threads
     monkeypatch.setattr(os, 'cpu_count', lambda: 2)
     # a generated node states what it needs: its callback groups and one more
     assert executor_threads([SimpleNamespace(min_threads=3)]) == 3
@@ -183,7 +183,7 @@ def test_a_process_spins_on_the_executor_its_nodes_need():
 
     import pytest
     from rclpy.executors import MultiThreadedExecutor, SingleThreadedExecutor
-    from robmosys_runtime.main import executor_kind, make_executor
+    from robmosys_runtime.executors import executor_kind, make_executor
 
     events, single, multi = (SimpleNamespace(executor_name=name) for name in (
         'events', 'single-threaded', 'multi-threaded'))

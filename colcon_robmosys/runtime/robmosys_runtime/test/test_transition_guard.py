@@ -12,8 +12,8 @@ from conftest import wait_until
 from lifecycle_msgs.msg import Transition
 from lifecycle_msgs.srv import ChangeState
 import rclpy
+from robmosys_runtime.executors import EXECUTORS
 from robmosys_runtime.lifecycle_calls import LifecycleCalls
-from robmosys_runtime.main import EXECUTORS
 from robmosys_runtime.transitions import TransitionGuard
 
 #: a component's process whose activation takes a second; argv: its node's name,
