@@ -33,10 +33,10 @@ from robmosys_runtime.arguments import (
 from robmosys_runtime.levels import Outcome, report
 from robmosys_runtime.locations import resolve_locations
 from robmosys_runtime.output import say
-from robmosys_runtime.processes import NotInstalled, plan_processes, PYTHON_GROUP
+from robmosys_runtime.processes import NotInstalled, plan_processes
 from robmosys_runtime.supervision import Processes
 from robmosys_runtime.told import (
-    brings_itself_down, read_steps, read_told, read_told_file, tellers, tells_all, told_file)
+    bringing_itself_down, read_steps, read_told, read_told_file, tellers, tells_all, told_file)
 
 # rclpy is imported once the instances are starting: they start it too, in
 # parallel (see main)
@@ -138,8 +138,10 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, on_signal)
     told: Optional[Dict[str, str]] = None
-    #: the pipe where the shared process that brings itself down tells its steps
+    #: the pipe where the shared process that brings itself down tells its steps,
+    #: and its group
     steps: Optional[int] = None
+    telling: Optional[str] = None
     printed = False
     if not args.attach:
         # the shared processes that bring up every managed instance tell them
@@ -160,8 +162,9 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
                             pass_fds=[pipes[group][1]] if group in pipes else [])
         for _, writing in pipes.values():
             os.close(writing)
-        if brings_itself_down(description, args.processes):
-            steps = pipes[PYTHON_GROUP][0]
+        telling = bringing_itself_down(description, args.processes)
+        if telling is not None:
+            steps = pipes[telling][0]
         if pipes:
             told = read_told([r for r, _ in pipes.values()], args.start_timeout + args.timeout,
                              signalled, keep_open=[steps] if steps is not None else [])
@@ -216,8 +219,8 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
         while not signalled.wait(0.5):
             pass
         manager.activation.stop()
-        if steps is not None:
-            manager.processes.interrupt(PYTHON_GROUP)
+        if steps is not None and telling is not None:
+            manager.processes.interrupt(telling)
             for level, text in read_steps(steps, wait=min(args.timeout, 10.0)):
                 say(level, text)
         elif not args.attach:

@@ -53,18 +53,22 @@ def _managed(description: Dict[str, Any]) -> Set[str]:
     return {i['instance'] for i in description['instances'] if i['managed']}
 
 
-def brings_itself_down(description: Dict[str, Any], shared: Optional[bool]) -> bool:
+def bringing_itself_down(description: Dict[str, Any], shared: Optional[bool]) -> Optional[str]:
     """
-    Tell whether the shared Python process of this host holds every managed instance.
+    Return the group of the shared process of this host that holds every managed instance.
 
-    It then brings them down itself at SIGINT (:func:`robmosys_runtime.container.bring_down`),
-    in the order ``bringup`` would, and tells ``bringup`` each step on its pipe
-    (:func:`read_steps`). Where other processes or hosts hold managed
-    instances too, ``bringup`` brings every one down through its lifecycle
-    services, in the model's order across them.
+    It then brings them down itself at SIGINT, in the order ``bringup`` would
+    (:func:`robmosys_runtime.container.bring_down`, the C++ container's own),
+    and tells ``bringup`` each step on its pipe (:func:`read_steps`). Where
+    other processes or hosts hold managed instances too (None), ``bringup``
+    brings every one down through its lifecycle services, in the model's
+    order across them.
     """
     managed = _managed(description)
-    return bool(managed) and managed <= set(tellers(description, shared).get(PYTHON_GROUP, ()))
+    for group, names in tellers(description, shared).items():
+        if managed and managed <= set(names):
+            return group
+    return None
 
 
 def read_steps(reading: int, wait: float) -> Iterator[Tuple[str, str]]:

@@ -29,6 +29,7 @@
 
 #include <unistd.h>
 
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -175,12 +176,11 @@ bool write_all(int fd, const std::string & text)
   while (written < text.size()) {
     const ssize_t done = ::write(fd, text.data() + written, text.size() - written);
     if (done < 0) {
-      ::close(fd);
       return false;
     }
     written += static_cast<std::size_t>(done);
   }
-  return ::close(fd) == 0;
+  return true;
 }
 
 /// Write a file that its reader finds whole or not at all (a temporary file renamed).
@@ -288,7 +288,11 @@ std::map<std::string, std::string> activate_in_order(
 }
 
 /// Tell the manager the states known: a line of JSON, on the descriptor and in the file.
-void tell(const Options & options, const std::map<std::string, std::string> & states)
+/**
+ * The descriptor stays open: bringup reads on it the steps of the bring-down
+ * (bring_down()), where this process holds every managed instance.
+ */
+void tell(Options & options, const std::map<std::string, std::string> & states)
 {
   std::string line = "{";
   for (const auto & state : states) {
@@ -301,10 +305,63 @@ void tell(const Options & options, const std::map<std::string, std::string> & st
   if (options.report_fd >= 0 && !write_all(options.report_fd, line)) {
     std::fprintf(stderr, "component_container: could not tell the manager on %d\n",
       options.report_fd);
+    ::close(options.report_fd);
+    options.report_fd = -1;
   }
   if (!options.report_file.empty() && !write_whole(options.report_file, line)) {
     std::fprintf(stderr, "component_container: error: %s: could not be written\n",
       options.report_file.c_str());
+  }
+}
+
+/// A node the container made, as Ctrl-C finds it.
+struct Held
+{
+  std::string name;
+  bool managed;
+  std::weak_ptr<rclcpp_lifecycle::LifecycleNode> node;
+};
+
+/// Deactivate, then clean up, the managed instances here, the last activated first.
+/**
+ * What bringup does through the lifecycle services, done in this process (as
+ * robmosys_runtime.container does for the Python instances), each step told on
+ * fd (``deactivate <instance>``, ``cleanup <instance>``, ``error: ...``), which
+ * is then closed. An instance found unconfigured is left so.
+ */
+void bring_down(const std::vector<Held> & held, int fd)
+{
+  using lifecycle_msgs::msg::State;
+  for (auto it = held.rbegin(); it != held.rend(); ++it) {
+    auto node = it->node.lock();
+    if (!it->managed || !node) {
+      continue;
+    }
+    for (const auto & step : {std::make_pair(State::PRIMARY_STATE_ACTIVE, "deactivate"),
+        std::make_pair(State::PRIMARY_STATE_INACTIVE, "cleanup")})
+    {
+      if (node->get_current_state().id() != step.first) {
+        continue;
+      }
+      const std::string verb = step.second;
+      const auto reached = verb == "deactivate" ? node->deactivate() : node->cleanup();
+      const bool done = reached.id() == (verb == "deactivate" ?
+        State::PRIMARY_STATE_INACTIVE : State::PRIMARY_STATE_UNCONFIGURED);
+      const std::string line = done ? verb + " " + it->name + "\n" :
+        "error: instance " + it->name + " could not be brought down: failed to " + verb +
+        " (it is " + reached.label() + ")\n";
+      // bringup stopped reading: it asks the instances
+      if (fd >= 0 && !write_all(fd, line)) {
+        ::close(fd);
+        fd = -1;
+      }
+      if (!done) {
+        break;
+      }
+    }
+  }
+  if (fd >= 0) {
+    ::close(fd);
   }
 }
 
@@ -320,6 +377,8 @@ int main(int argc, char ** argv)
       "robmosys_runtime.cpp_container)\n", error.what());
     return 2;
   }
+  // a pipe bringup no longer reads fails a write, and does not end the process
+  std::signal(SIGPIPE, SIG_IGN);
   rclcpp::init(static_cast<int>(options.ros_argv.size()), options.ros_argv.data());
   int status = 0;
   {
@@ -336,27 +395,34 @@ int main(int argc, char ** argv)
           instance.name.c_str(), error.what());
       }
     }
-    // Ctrl-C: each node takes its shutdown transition (its on_shutdown functions
-    // run, its ports are released) while it can still tell its lifecycle clients
-    std::vector<std::weak_ptr<rclcpp_lifecycle::LifecycleNode>> weak_nodes;
+    if (options.activate) {
+      tell(options, activate_in_order(options.instances, nodes));
+    }
+    // Ctrl-C: where it brought them up, the managed instances are brought down
+    // (deactivate, cleanup), as the Python process does; then each node takes
+    // its shutdown transition (its on_shutdown functions run, its ports are
+    // released), while it can still tell its lifecycle clients
+    std::vector<Held> held;
     for (const Instance & instance : options.instances) {
       if (nodes.count(instance.name) > 0) {
-        weak_nodes.push_back(nodes[instance.name]);
+        held.push_back({instance.name, instance.managed, nodes[instance.name]});
       }
     }
+    const bool brings_down = options.activate;
+    const int steps = options.report_fd;
     rclcpp::contexts::get_global_default_context()->add_pre_shutdown_callback(
-      [weak_nodes]() {
+      [held, brings_down, steps]() {
+        if (brings_down) {
+          bring_down(held, steps);
+        }
         const auto finalized = lifecycle_msgs::msg::State::PRIMARY_STATE_FINALIZED;
-        for (auto it = weak_nodes.rbegin(); it != weak_nodes.rend(); ++it) {
-          auto alive = it->lock();
+        for (auto it = held.rbegin(); it != held.rend(); ++it) {
+          auto alive = it->node.lock();
           if (alive && alive->get_current_state().id() != finalized) {
             alive->shutdown();
           }
         }
       });
-    if (options.activate) {
-      tell(options, activate_in_order(options.instances, nodes));
-    }
     nodes.clear();
     executor->add_node(container);
     try {

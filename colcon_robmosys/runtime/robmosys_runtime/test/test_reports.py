@@ -14,7 +14,8 @@ from rclpy.lifecycle import TransitionCallbackReturn
 from robmosys_runtime.activation import SystemActivation
 from robmosys_runtime.container import bring_up
 from robmosys_runtime.reports import Reporter, reporter_name, Reports
-from robmosys_runtime.told import read_told, read_told_file, tellers, tells_all, told_file
+from robmosys_runtime.told import (
+    bringing_itself_down, read_told, read_told_file, tellers, tells_all, told_file)
 
 DESCRIPTION = {'package': 'tidy_system', 'namespace': '/robot1'}
 
@@ -195,6 +196,17 @@ def test_bringup_reads_the_pipe_only_where_the_shared_process_brings_up_every_ma
     assert not tells_all(system({'instance': 'a'}, {'instance': 'b', 'command': ['x']}), None)
     # nothing managed: nothing to tell
     assert not tells_all(system({'instance': 'a', 'managed': False}), None)
+    # the process that holds every managed instance brings them down itself,
+    # the Python one or the C++ container; none where they are split
+    cpp = {'python_class': None, 'plugin': 'x'}
+    assert bringing_itself_down(system({'instance': 'a'}, {'instance': 'b'}), None) == \
+        'python instances'
+    assert bringing_itself_down(system(dict(cpp, instance='a'), dict(cpp, instance='b'),
+                                       {'instance': 'c', 'managed': False}), None) == \
+        'C++ instances'
+    assert bringing_itself_down(both, None) is None
+    assert bringing_itself_down(system({'instance': 'a'}), False) is None
+    assert bringing_itself_down(system({'instance': 'a', 'managed': False}), None) is None
 
 
 def test_the_states_go_to_the_file_of_the_launch_too(spinning, tmp_path):
