@@ -29,6 +29,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -395,10 +396,7 @@ int main(int argc, char ** argv)
           instance.name.c_str(), error.what());
       }
     }
-    if (options.activate) {
-      tell(options, activate_in_order(options.instances, nodes));
-    }
-    // Ctrl-C: where it brought them up, the managed instances are brought down
+    // Ctrl-C: once it brought them up, the managed instances are brought down
     // (deactivate, cleanup), as the Python process does; then each node takes
     // its shutdown transition (its on_shutdown functions run, its ports are
     // released), while it can still tell its lifecycle clients
@@ -408,12 +406,15 @@ int main(int argc, char ** argv)
         held.push_back({instance.name, instance.managed, nodes[instance.name]});
       }
     }
-    const bool brings_down = options.activate;
-    const int steps = options.report_fd;
+    // where the steps go once the bring-up is told (-1: nowhere); until then
+    // a Ctrl-C only shuts the nodes down, and a bring-down is done once
+    constexpr int not_up = -2;
+    auto steps = std::make_shared<std::atomic<int>>(not_up);
     rclcpp::contexts::get_global_default_context()->add_pre_shutdown_callback(
-      [held, brings_down, steps]() {
-        if (brings_down) {
-          bring_down(held, steps);
+      [held, steps]() {
+        const int fd = steps->exchange(not_up);
+        if (fd != not_up) {
+          bring_down(held, fd);
         }
         const auto finalized = lifecycle_msgs::msg::State::PRIMARY_STATE_FINALIZED;
         for (auto it = held.rbegin(); it != held.rend(); ++it) {
@@ -423,6 +424,10 @@ int main(int argc, char ** argv)
           }
         }
       });
+    if (options.activate) {
+      tell(options, activate_in_order(options.instances, nodes));
+      steps->store(options.report_fd);
+    }
     nodes.clear();
     executor->add_node(container);
     try {
