@@ -436,6 +436,33 @@ def test_a_shared_system_runs_its_cpp_instances_in_one_container(
         assert_no_traceback(bringup.output())
 
 
+#: start the container as bringup does (--activate, --report-fd), read what it tells
+#: with bringup's own readers, SIGINT it: print the states, the steps and its exit code
+#: as JSON (argv: the description, the parameter file, the instances); in the
+#: workspace's environment, where robmosys_runtime is
+CONTAINER_TELLING = """
+import json, os, signal, subprocess, sys, threading
+from robmosys_runtime.told import read_steps, read_told
+reading, writing = os.pipe()
+container = subprocess.Popen(
+    [sys.executable, '-m', 'robmosys_runtime.cpp_container', '--activate', '--report-fd',
+     str(writing), *sys.argv[1:]], pass_fds=[writing], stdout=sys.stderr)
+os.close(writing)
+try:
+    states = read_told([reading], 60.0, threading.Event(), keep_open=[reading])
+    container.send_signal(signal.SIGINT)
+    steps = [text if level == 'info' else f'{level}: {text}'
+             for level, text in read_steps(reading, wait=30.0)]
+    code = container.wait(timeout=30)
+finally:
+    if container.poll() is None:
+        container.kill()
+        container.wait()
+    os.close(reading)
+print(json.dumps({'states': states, 'steps': steps, 'code': code}))
+"""
+
+
 @requires_rclcpp
 def test_the_container_brings_its_instances_down_itself_and_tells_each_step(
         test_workspace_built, domain_id):
@@ -445,59 +472,20 @@ def test_the_container_brings_its_instances_down_itself_and_tells_each_step(
     told the bring-up on, instead of finding 50 nodes' lifecycle services
     then (4.4 s at 50 instances, where the container takes 0.5 s).
     """
-    import subprocess
     share = test_workspace_built.share(SYSTEM)
     description = json.loads((share / 'bringup.json').read_text(encoding='utf-8'))
     cpp = [i['instance'] for i in description['instances'] if i['plugin']]
-    reading, writing = os.pipe()
-    container = subprocess.Popen(
-        [sys.executable, '-m', 'robmosys_runtime.cpp_container', '--activate',
-         '--report-fd', str(writing), str(share / 'bringup.json'),
-         str(share / description['params_file']), *cpp],
-        env=test_workspace_built.env(domain_id), pass_fds=[writing],
-        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    os.close(writing)
-    pipe = _Pipe(reading)
-    try:
-        told = pipe.read(until=lambda text: '\n' in text, timeout=60)
-        states = json.loads(told.split('\n')[0])
-        active = [name for name in cpp if states.get(name) == 'active']
-        assert active, states
-        container.send_signal(signal.SIGINT)
-        # to the end of the pipe: the container closes it once it is done
-        steps = pipe.read(until=lambda text: False, timeout=30).split('\n', 1)[1].splitlines()
-        assert steps == [f'{verb} {name}' for name in reversed(active)
-                         for verb in ('deactivate', 'cleanup')]
-        output, _ = container.communicate(timeout=30)
-        assert container.returncode == 0, output
-        assert_no_traceback(output)
-    finally:
-        os.close(reading)
-        if container.poll() is None:
-            container.kill()
-            container.communicate()
-
-
-class _Pipe:
-    """The reading end of a pipe, read with a timeout."""
-
-    def __init__(self, reading: int) -> None:
-        self.reading = reading
-        #: what it gave so far
-        self.text = ''
-
-    def read(self, until, timeout: float) -> str:
-        """Return what it gave, read until until(it) holds, its end, or timeout seconds."""
-        import select
-        import time
-        deadline = time.monotonic() + timeout
-        while not until(self.text) and time.monotonic() < deadline:
-            ready, _, _ = select.select([self.reading], [], [], 0.1)
-            chunk = os.read(self.reading, 65536) if ready else None
-            if chunk == b'':
-                break
-            self.text += (chunk or b'').decode('utf-8')
-        return self.text
+    result = ros_env.run([sys.executable, '-c', CONTAINER_TELLING, str(share / 'bringup.json'),
+                          str(share / description['params_file']), *cpp],
+                         env=test_workspace_built.env(domain_id), timeout=150)
+    assert result.returncode == 0, result.stdout + result.stderr
+    told = json.loads(result.stdout.splitlines()[-1])
+    active = [name for name in cpp if (told['states'] or {}).get(name) == 'active']
+    assert active, told
+    assert told['steps'] == [f'{verb} {name}' for name in reversed(active)
+                             for verb in ('deactivate', 'cleanup')], told
+    assert told['code'] == 0, result.stderr
+    assert_no_traceback(result.stderr)
 
 
 def _cmdline(proc: Path) -> bytes:

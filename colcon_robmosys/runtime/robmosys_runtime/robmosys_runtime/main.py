@@ -116,8 +116,9 @@ def run_nodes(node_factories: Sequence[Callable[[], Node]],
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception:  # noqa: B902 - re-raised unless shutting down
-        # a callback that was running when SIGINT or SIGTERM shut the
-        # context down fails with it; that is the shutdown, not an error
+        # a callback that was running when the context was shut down (not by
+        # the signals: they end the spin first) fails with it; that is the
+        # shutdown, not an error
         if rclpy.ok():
             raise
     finally:
