@@ -206,7 +206,7 @@ def bring_up(install: Path, package: str, path: str, layout: str, count: int,
     return outcome, took, stop
 
 
-#: what bringup (robmosys_runtime.processes) and launch print when a process
+#: what bringup (robmosys_runtime.hosting.processes) and launch print when a process
 #: needed SIGKILL, or launch escalated past SIGINT
 KILLED = 'SIGKILL'
 #: the environment variable that marks the processes of one run

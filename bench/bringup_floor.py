@@ -5,7 +5,7 @@
     python bringup_floor.py DESCRIPTION PARAMS_FILE
 
 Makes the node of every instance of a system's description (``bringup.json``)
-as the shared process does (:mod:`robmosys_runtime.container`), then configures
+as the shared process does (:mod:`robmosys_runtime.hosting.container`), then configures
 and activates each in turn through rclpy's own transitions: no lifecycle
 service, no DDS discovery, no other process. Prints ``floor: <N> of <N> active``
 once done. That is what these N rclpy lifecycle nodes cost to be up in one
@@ -21,7 +21,7 @@ from typing import Sequence
 
 import rclpy
 from rclpy.lifecycle import TransitionCallbackReturn
-from robmosys_runtime.container import node_factory
+from robmosys_runtime.hosting.container import node_factory
 
 
 def main(argv: Sequence[str]) -> int:

@@ -99,22 +99,39 @@ def test_layers_import_only_downwards():
     assert problems == []
 
 
-def test_no_import_cycle_between_subpackages():
-    graph = _package_graph()
+def _cycle(graph: dict[str, set[str]]) -> str | None:
+    """Return an import cycle of a graph as ``a -> b -> a``, or None."""
     state: dict[str, int] = {}
 
-    def visit(node: str, path: list[str]) -> None:
+    def visit(node: str, path: list[str]) -> str | None:
         state[node] = 1
         for child in sorted(graph.get(node, ())):
-            assert state.get(child) != 1, \
-                'import cycle: ' + ' -> '.join(path + [node, child])
+            if state.get(child) == 1:
+                # on the way here: the cycle is the way from it
+                trail = [*path, node]
+                return ' -> '.join(trail[trail.index(child):] + [child])
             if not state.get(child):
-                visit(child, path + [node])
+                found = visit(child, path + [node])
+                if found:
+                    return found
         state[node] = 2
+        return None
 
     for node in sorted(graph):
         if not state.get(node):
-            visit(node, [])
+            found = visit(node, [])
+            if found:
+                return found
+    return None
+
+
+def test_no_import_cycle_between_subpackages():
+    assert _cycle(_package_graph()) is None
+
+
+def test_the_cycle_check_finds_a_cycle():
+    assert _cycle({'a': {'b'}, 'b': {'c'}, 'c': {'b'}, 'd': set()}) == 'b -> c -> b'
+    assert _cycle({'a': {'b'}, 'b': set()}) is None
 
 
 def test_pipeline_is_not_importing_glue_or_devtools():
@@ -143,6 +160,97 @@ def test_bench_and_tools_do_not_use_tests(folder: str):
             f'{path.relative_to(REPO)} imports from tests/'
         assert "'tests'" not in text and '"tests"' not in text, \
             f'{path.relative_to(REPO)} puts tests/ on its path'
+
+
+#: The runtime's Python package (docs/architecture.md, "The runtime's rooms"):
+#: its top is the component side, what a component node is made of, which a
+#: hand-written node imports and nothing else; each room below it may import
+#: the rooms named here, and no other.
+RUNTIME_MODULES = RUNTIME_PACKAGE / 'robmosys_runtime'
+COMPONENT_SIDE = ''
+RUNTIME_ROOMS = {
+    COMPONENT_SIDE: set(),
+    'tools': {COMPONENT_SIDE},
+    'hosting': {COMPONENT_SIDE},
+    'watch': {COMPONENT_SIDE, 'hosting'},
+    'system': {COMPONENT_SIDE, 'tools', 'hosting', 'watch'},
+}
+MAX_FOLDER_MODULES = 15
+
+
+def _runtime_module(path: Path) -> str:
+    """Return the dotted name of a module of the runtime's Python package."""
+    relative = path.relative_to(RUNTIME_MODULES.parent).with_suffix('')
+    parts = relative.parts[:-1] if relative.name == '__init__' else relative.parts
+    return '.'.join(parts)
+
+
+def _room(module: str) -> str | None:
+    """Return the room of a runtime module (or of a name its top exports), else None."""
+    parts = module.split('.')
+    if parts[0] != 'robmosys_runtime':
+        return None
+    if len(parts) > 1 and parts[1] in RUNTIME_ROOMS:
+        return parts[1]
+    return COMPONENT_SIDE
+
+
+def _runtime_graph() -> dict[str, set[str]]:
+    """Return each module of the runtime -> the modules of the runtime it imports."""
+    sources = {_runtime_module(p): p for p in _sources(RUNTIME_MODULES)}
+    return {name: {m for m in _imports(path) if m in sources and m != name}
+            for name, path in sources.items()}
+
+
+def test_the_runtime_has_its_rooms():
+    found = {_room(name) for name in _runtime_graph()}
+    assert found == set(RUNTIME_ROOMS)
+    deeper = [name for name in _runtime_graph() if len(name.split('.')) > 3]
+    assert deeper == []
+    for room in RUNTIME_ROOMS:
+        init = RUNTIME_MODULES / room / '__init__.py'
+        docstring = ast.get_docstring(ast.parse(init.read_text(encoding='utf-8')))
+        assert docstring and 'import' in docstring, f'{init}: say what it holds and imports'
+
+
+def test_each_room_of_the_runtime_imports_only_the_rooms_below_it():
+    problems = []
+    for path in _sources(RUNTIME_MODULES):
+        own = _room(_runtime_module(path))
+        for module in sorted(_imports(path)):
+            target = _room(module)
+            if target is not None and target != own and target not in RUNTIME_ROOMS[own]:
+                problems.append(f'{path.relative_to(REPO)}: {own or "component"} '
+                                f'imports {module}')
+    assert problems == []
+
+
+def test_no_module_of_the_runtime_imports_one_of_its_callers():
+    """Counting the imports inside functions: each is one the module needs."""
+    assert _cycle(_runtime_graph()) is None
+
+
+def test_hand_written_and_generated_nodes_import_only_the_component_side():
+    """A component's code, generated or the user's, needs no room of the runtime."""
+    nodes = [*sorted((REPO / 'templates' / 'component_python').glob('*.jinja')),
+             *sorted((REPO / 'test_workspace' / 'src').rglob('*.py'))]
+    importing = [f'{path.relative_to(REPO)}: {line.strip()}' for path in nodes
+                 for line in path.read_text(encoding='utf-8').splitlines()
+                 if re.match(r'\s*(from|import) robmosys_runtime', line) and
+                 _room(line.split()[1]) != COMPONENT_SIDE]
+    assert importing == []
+    # what is looked at: the hand-written event server of test_workspace
+    assert any('from robmosys_runtime import EventServer' in p.read_text(encoding='utf-8')
+               for p in nodes)
+
+
+def test_no_runtime_folder_holds_more_than_15_modules():
+    folders: dict[str, int] = {}
+    for path in _sources(RUNTIME_PACKAGE):
+        folder = str(path.parent.relative_to(REPO))
+        folders[folder] = folders.get(folder, 0) + 1
+    assert len(folders) > len(RUNTIME_ROOMS)
+    assert {f: n for f, n in folders.items() if n > MAX_FOLDER_MODULES} == {}
 
 
 def test_modules_are_small():
@@ -248,7 +356,8 @@ def _named_paths(text: str) -> list[str]:
     """Return what a document names in backquotes that is a path of the repository.
 
     A name with a slash counts when its first folder is one of the
-    repository or the package (``pkg/msg/Name`` is no path); a file name
+    repository or the package (``pkg/msg/Name``, ``/diagnostics`` are no
+    paths); a file name
     without one when it has a suffix of ours, found anywhere below the
     package or the templates (``graph.py`` of the importer's row).
     """
@@ -256,7 +365,8 @@ def _named_paths(text: str) -> list[str]:
     for name in re.findall(r'`([^`\s]+)`', text):
         first = name.split('/')[0]
         if '/' in name:
-            if any(glob_exists(root, first) for root in DOC_ROOTS):
+            # a ROS name (`/diagnostics`) is no path
+            if first and any(glob_exists(root, first) for root in DOC_ROOTS):
                 found.append(name)
         elif name.endswith(DOC_SUFFIXES):
             found.append('**/' + name)

@@ -340,8 +340,8 @@ def test_the_smoke_test_fails_when_the_system_does_not_come_up(test_workspace_bu
 
 
 def _smoke(built: BuiltWorkspace, **kwargs) -> list:
-    """Run robmosys_runtime.smoke in a process of its own, in the workspace's environment."""
-    script = ('import json, sys; from robmosys_runtime import smoke; '
+    """Run robmosys_runtime.tools.smoke in a process of its own, in the workspace's environment."""
+    script = ('import json, sys; from robmosys_runtime.tools import smoke; '
               f'print(json.dumps(smoke.run({SYSTEM!r}, **json.loads(sys.argv[1]))))')
     result = run_command([sys.executable, '-c', script, json.dumps(kwargs)],
                          env=built.env(free_domain_id()), timeout=300)
@@ -385,7 +385,7 @@ def test_shared_processes_run_the_python_instances_in_one_process(test_workspace
         assert wait_until(lambda: re.search(r'received hi there \d+', bringup.output())
                           is not None, timeout=30), bringup.output()
         # one process holds the eight nodes: none of them has a process of its own
-        containers = [p for p in _processes_with('robmosys_runtime.container')
+        containers = [p for p in _processes_with('robmosys_runtime.hosting.container')
                       if str(path).encode() in Path(f'/proc/{p}/cmdline').read_bytes()]
         assert len(containers) == 1, containers
         # (of this bringup: other tests may run the same install beside it)

@@ -442,10 +442,10 @@ def test_a_shared_system_runs_its_cpp_instances_in_one_container(
 #: workspace's environment, where robmosys_runtime is
 CONTAINER_TELLING = """
 import json, os, signal, subprocess, sys, threading
-from robmosys_runtime.told import read_steps, read_told
+from robmosys_runtime.hosting.told import read_steps, read_told
 reading, writing = os.pipe()
 container = subprocess.Popen(
-    [sys.executable, '-m', 'robmosys_runtime.cpp_container', '--activate', '--report-fd',
+    [sys.executable, '-m', 'robmosys_runtime.hosting.cpp_container', '--activate', '--report-fd',
      str(writing), *sys.argv[1:]], pass_fds=[writing], stdout=sys.stderr)
 os.close(writing)
 try:

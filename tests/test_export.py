@@ -144,7 +144,7 @@ def test_a_file_changed_in_the_export_is_kept(tmp_path):
     workspace = _workspace(tmp_path / 'ws')
     export = tmp_path / 'release'
     assert _export(workspace, export, '--packages-select', 'publisher').returncode == 0
-    changed = export / 'robmosys_runtime' / 'robmosys_runtime' / 'levels.py'
+    changed = export / 'robmosys_runtime' / 'robmosys_runtime' / 'system' / 'levels.py'
     changed.write_text('# patched for the release\n')
     result = _export(workspace, export, '--packages-select', 'publisher')
     assert result.returncode == 1

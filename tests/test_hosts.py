@@ -125,8 +125,8 @@ class System:
         return dict(re.findall(r'^(\w+): (\w+)', answer['message'], re.MULTILINE))
 
     def smoke(self) -> list[str]:
-        """Run the system's smoke test on base (robmosys_runtime.smoke); return its problems."""
-        script = ('import json, sys; from robmosys_runtime import smoke; '
+        """Run the system's smoke test on base (the runtime's tools.smoke); return its problems."""
+        script = ('import json, sys; from robmosys_runtime.tools import smoke; '
                   'print(json.dumps(smoke.run(sys.argv[1], description_file=sys.argv[2])))')
         result = self.network.run('base', [sys.executable, '-c', script, self.package,
                                            str(self.description)], self.env['base'], timeout=300)

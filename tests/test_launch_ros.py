@@ -316,7 +316,7 @@ def test_a_shared_system_comes_up_through_its_launch_file_and_ctrl_c_ends_it_in_
         assert not re.search(r'instance \w+ is active', run.output()), run.output()
         marked = processes_marked(env[MARKER])
         commands = [(Path('/proc') / str(p) / 'cmdline').read_bytes() for p in marked]
-        assert sum(b'robmosys_runtime.container' in c for c in commands) == 1, commands
+        assert sum(b'robmosys_runtime.hosting.container' in c for c in commands) == 1, commands
         assert sum(b'__node:=crowd_system_container' in c and
                    b'crowd_system/component_container' in c for c in commands) == 1, commands
         # the launch, the Python instances, the container, the manager

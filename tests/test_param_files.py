@@ -9,7 +9,7 @@ holds one defect and states the lines it must get, as the model corpus does::
     # options: --running
 
 Each file of ``tests/params/valid`` gets no error (wildcards, nesting, rcl's own
-spellings of values). The checker is robmosys_runtime.paramcheck, the code of
+spellings of values). The checker is robmosys_runtime.tools.paramcheck, the code of
 ``ros2 run <system> check_params`` and ``colcon robmosys-check params``; the
 integration tests at the end run both as processes on the built test_workspace.
 """
@@ -38,7 +38,7 @@ INVALID = sorted((PARAMS / 'invalid').glob('*.yaml'))
 VALID = sorted((PARAMS / 'valid').glob('*.yaml'))
 _DIRECTIVE = re.compile(r'^# (expect|options): (.+)$', re.MULTILINE)
 
-paramcheck = runtime_module('paramcheck')
+paramcheck = runtime_module('tools.paramcheck')
 
 
 @pytest.fixture(scope='module')
@@ -100,7 +100,7 @@ def test_node_names_match_as_rclcpp_and_rclpy_match_them(pattern, fqn, matches):
 
 
 def test_values_are_typed_as_rcl_types_them():
-    read = runtime_module('paramfile').read_text(
+    read = runtime_module('tools.paramfile').read_text(
         '/a:\n  ros__parameters:\n    {}\n'.format('\n    '.join([
             'b: yes', 'i: 010', 'h: 0x1F', 'd: 08', 'e: 1e3', 'n: null', 'q: "5"',
             's: !!str 5', 'o: 1e999', 'x: .NaN', 'l: [Off, on]'])))

@@ -110,14 +110,14 @@ def test_a_shared_system_starts_processes_as_bringup_does(tmp_path):
         # INSTANCE... --ros-args ..., as bringup; the file with the manager has each
         # process bring up what it can and write what it brought up where the
         # manager reads it (--told-file); the description, the parameters and the
-        # ROS arguments are those of the launch arguments (robmosys_runtime.launching)
+        # ROS arguments are those of the launch arguments (robmosys_runtime.system.launching)
         for module, told, instances in (('container', 'arguments.told_file', python),
                                         ('cpp_container', 'arguments.cpp_told_file', cpp)):
             cmd = shared[module]
             self_activating = ["'--activate'", "'--report-file'", told]
             assert (cmd[3:6] == self_activating) == (name == 'crowd_system.launch.py')
             cmd = [c for c in cmd if c not in self_activating]
-            assert cmd[:5] == ['sys.executable', "'-m'", f"'robmosys_runtime.{module}'",
+            assert cmd[:5] == ['sys.executable', "'-m'", f"'robmosys_runtime.hosting.{module}'",
                                'arguments.description', 'arguments.params_file']
             assert cmd[-2:] == ["'--ros-args'", '*arguments.ros_arguments']
             assert [ast.literal_eval(e) for e in cmd[5:-2]] == instances
@@ -261,8 +261,9 @@ def test_ctrl_c_of_bringup_ends_20_shared_instances_within_bounds_under_load(
         # the process brought its instances up itself: the manager found them active
         assert not re.search(r'instance \w+ is active', run.output()), run.output()
         # one process for the twenty nodes, beside bringup
+        shared = b'robmosys_runtime.hosting.container'
         assert [p for p in processes_marked(env[MARKER])
-                if b'robmosys_runtime.container' in Path(f'/proc/{p}/cmdline').read_bytes()]
+                if shared in Path(f'/proc/{p}/cmdline').read_bytes()]
         assert len(processes_marked(env[MARKER])) == 2, processes_marked(env[MARKER])
         took, output = ctrl_c(run, env[MARKER])
         assert run.proc.wait(timeout=1) == 0, output
@@ -283,7 +284,7 @@ def test_the_shared_process_of_a_launch_brings_its_instances_down_at_sigint(
     names = [i['instance'] for i in description['instances']]
     told = tmp_path / 'told.json'
     # the command of crowd_system.launch.py's shared process (test_a_shared_system_...)
-    command = [sys.executable, '-m', 'robmosys_runtime.container', '--activate',
+    command = [sys.executable, '-m', 'robmosys_runtime.hosting.container', '--activate',
                '--report-file', str(told), str(share / 'bringup.json'),
                str(share / description['params_file']), *names, '--ros-args']
     watched = ['pub_0', 'sub_0', 'pub_9']

@@ -410,7 +410,7 @@ def test_a_system_on_two_hosts_has_launch_files_per_host(tmp_path):
     # one Python instance in the shared process, as bringup runs it
     nodes_file = launch / 'hosted_system.nodes.launch.py'
     assert read_launch_file(nodes_file, out) == []
-    assert re.search(r"'robmosys_runtime\.container',\s+arguments\.description, "
+    assert re.search(r"'robmosys_runtime\.hosting\.container',\s+arguments\.description, "
                      r"arguments\.params_file,\s+'planner',", nodes_file.read_text())
     assert "cmd=[arguments.bringup, '--attach'," in \
         (launch / 'hosted_system.launch.py').read_text()

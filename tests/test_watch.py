@@ -385,7 +385,7 @@ def test_the_smoke_test_fails_when_the_system_differs_from_its_model(
     greeting['value'] = 'bonjour'
     path = tmp_path / 'bringup.json'
     path.write_text(json.dumps(description))
-    script = ('import json, sys; from robmosys_runtime import smoke; print(json.dumps('
+    script = ('import json, sys; from robmosys_runtime.tools import smoke; print(json.dumps('
               "smoke.run('examples_system', description_file=sys.argv[1], timeout=10.0)))")
     result = run_command([sys.executable, '-c', script, str(path)],
                          env=built.env(free_domain_id()), timeout=300)

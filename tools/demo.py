@@ -86,7 +86,7 @@ def run_system(system: str, seconds: float) -> int:
     """
     from ament_index_python.packages import (
         get_package_prefix, get_package_share_directory, PackageNotFoundError)
-    from robmosys_runtime.smoke import (
+    from robmosys_runtime.tools.smoke import (
         interface, Probe, spinning_node, stop, TOPIC_ENTITIES, wait_until_up)
 
     try:

@@ -6,7 +6,7 @@
 A system's ``bringup.json`` carries them per instance (``declared``), so that
 an operator's parameter file is checked against the system offline, on a
 robot without colcon-robmosys (``ros2 run <system> check_params FILE``,
-robmosys_runtime.paramcheck), and in the workspace (``colcon robmosys-check
+robmosys_runtime.tools.paramcheck), and in the workspace (``colcon robmosys-check
 params``) from the same description.
 """
 
@@ -90,7 +90,7 @@ def declared_parameters(instance: Instance, component: Component,
     declared = [_declared(name, p, 'model')
                 for name, p in node_parameters(component.parameters, values).items()]
     # and each mapped parameter once more, as a template: a parameter file that sets
-    # its array names other entries than the system does (robmosys_runtime.paramcheck)
+    # its array names other entries than the system does (robmosys_runtime.tools.paramcheck)
     declared += [_declared(p.name, p, 'mapped') for p in component.parameters
                  if p.for_each is not None]
     declared += [DeclaredParameter(name, type_, 'node')

@@ -120,7 +120,7 @@ class LaunchFile:
         """Tell whether the file starts the system manager: the system's own file does."""
         return self.suffix == ''
 
-    # The processes of its instances, as bringup's (robmosys_runtime.processes,
+    # The processes of its instances, as bringup's (robmosys_runtime.hosting.processes,
     # plan_processes) from the same bringup.json: one per instance, or with
     # processes: shared one for the Python instances and a component container
     # for the C++ instances of the manager's host. templates/system/processes.jinja

@@ -77,7 +77,7 @@ class SystemPackage:
     def bringup_description(self) -> str:
         """Return what ``ros2 run <system> bringup`` reads: the instances, as JSON.
 
-        robmosys_runtime.bringup starts them as the launch files do and brings
+        robmosys_runtime.system.bringup starts them as the launch files do and brings
         the managed ones up in order.
         """
         instances: list[dict[str, Any]] = [{

@@ -29,7 +29,7 @@ class RobmosysCheckVerb(SubverbVerb):
 
     ``params``: an operator's parameter files against a system, as
     ``ros2 run <system> check_params`` checks them where the system is
-    installed (the same code: robmosys_runtime.paramcheck).
+    installed (the same code: robmosys_runtime.tools.paramcheck).
     """
 
     def add_arguments(self, *, parser):  # noqa: D102
@@ -65,7 +65,7 @@ class RobmosysCheckVerb(SubverbVerb):
         description, problems = _description(args)
         found = []
         if description is not None:
-            paramcheck = runtime_module('paramcheck')
+            paramcheck = runtime_module('tools.paramcheck')
             found = [Diagnostic(Location(path, problem.line, problem.column),
                                 problem.message, problem.severity)
                      for path, problem in paramcheck.check_files(

@@ -84,7 +84,7 @@ def read_launch_file(path: Path, share_dir: Path) -> list[NodeLaunch]:
       ``params_file`` of the launch file resolves
     """
     tree = ast.parse(path.read_text(encoding='utf-8'), filename=str(path))
-    # what robmosys_runtime.launching.SystemArguments gives every node when
+    # what robmosys_runtime.system.launching.SystemArguments gives every node when
     # no launch argument is given: the system's parameter file, log level info
     names: dict[str, Any] = {'arguments.parameters': [share_dir / 'cfg' / 'params.yaml'],
                              'arguments.ros_arguments': ['--log-level', 'info']}

@@ -15,7 +15,7 @@ import json
 import sys
 
 from lifecycle_msgs.srv import GetState
-from robmosys_runtime.smoke import Probe, spinning_node
+from robmosys_runtime.tools.smoke import Probe, spinning_node
 from std_srvs.srv import Trigger
 
 

@@ -87,6 +87,6 @@ class PythonBackend(Backend):
         """Return module:class of the node the component's executable runs.
 
         A process of several instances creates the nodes with it
-        (robmosys_runtime.container).
+        (robmosys_runtime.hosting.container).
         """
         return NodeStart(python_class=f'{plan.package}.{plan.node_module}:{plan.node_cls}')

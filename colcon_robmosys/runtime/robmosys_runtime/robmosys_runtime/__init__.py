@@ -7,6 +7,20 @@ Hand-written nodes use it too: :class:`EventServer` and :class:`EventClient`
 serve and use event ports, :class:`QueryClient` and :class:`ActionClientPort`
 call queries and actions blocking or asynchronously (see docs/runtime.md).
 
+The modules at the top of the package are the component side: what a
+component node is made of (:mod:`.node`, :mod:`.ports`, :mod:`.events`,
+:mod:`.parameters` and :mod:`.rules`, :mod:`.activity`, :mod:`.qos`,
+:mod:`.announce`, :mod:`.transitions`) and its process (:mod:`.main`,
+:mod:`.executors`). They import none of the rooms below, and a hand-written
+node needs nothing else. The rooms, each importing only those before it:
+
+- :mod:`robmosys_runtime.tools`: the arguments of a system's start, the
+  offline check of parameter files, the smoke test;
+- :mod:`robmosys_runtime.hosting`: the processes of a system's instances,
+  the shared ones, and what they tell the manager;
+- :mod:`robmosys_runtime.watch`: the conformance watch;
+- :mod:`robmosys_runtime.system`: the system manager and ``bringup``.
+
 The names below are imported from their modules when first used: ``bringup``
 starts the processes of a system's instances before it imports rclpy (a
 third of a second, which the instances spend starting), and importing a

@@ -4,7 +4,7 @@
 // The C++ instances of a system's host in one process (`processes: shared`): an
 // rclcpp_components component container that loads its instances by itself and,
 // with ACTIVATE, brings the managed ones up, as the shared Python process does
-// (robmosys_runtime.container). It makes each node with its component's
+// (robmosys_runtime.hosting.container). It makes each node with its component's
 // rclcpp_components factory, with the name, namespace, remappings and parameter
 // file its own process would have, configures and activates each managed instance
 // whose predecessors it activated itself, in the model's order, through the node's
@@ -16,7 +16,7 @@
 // that was what it added to the floor of 50 C++ instances (1.64x, issue 28).
 // Its load_node, unload_node and list_nodes services stay, as rclcpp_components'.
 //
-// robmosys_runtime.cpp_container reads the system's description and starts this
+// robmosys_runtime.hosting.cpp_container reads the system's description and starts this
 // program with everything on the command line, counted (no value is parsed):
 //
 //   component_container EXECUTOR THREADS ACTIVATE REPORT_FD REPORT_FILE COUNT
@@ -326,7 +326,7 @@ struct Held
 /// Deactivate, then clean up, the managed instances here, the last activated first.
 /**
  * What bringup does through the lifecycle services, done in this process (as
- * robmosys_runtime.container does for the Python instances), each step told on
+ * robmosys_runtime.hosting.container does for the Python instances), each step told on
  * fd (``deactivate <instance>``, ``cleanup <instance>``, ``error: ...``), which
  * is then closed. An instance found unconfigured is left so.
  */
@@ -375,7 +375,7 @@ int main(int argc, char ** argv)
     options = parse(argc, argv);
   } catch (const std::exception & error) {
     std::fprintf(stderr, "component_container: error: %s (it is started by "
-      "robmosys_runtime.cpp_container)\n", error.what());
+      "robmosys_runtime.hosting.cpp_container)\n", error.what());
     return 2;
   }
   // a pipe bringup no longer reads fails a write, and does not end the process

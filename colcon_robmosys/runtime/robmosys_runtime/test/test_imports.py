@@ -16,7 +16,7 @@ def test_bringup_starts_the_instances_before_it_imports_rclpy():
     # module imports, then imports rclpy (a third of a second): importing
     # the module must not import rclpy through the package
     shown = subprocess.run(
-        [sys.executable, '-c', 'import sys, robmosys_runtime.bringup\n'
+        [sys.executable, '-c', 'import sys, robmosys_runtime.system.bringup\n'
          "print(sorted(m for m in sys.modules if m.split('.')[0] == 'rclpy'))"],
         capture_output=True, text=True, timeout=60, check=True)
     assert shown.stdout.strip() == '[]'
@@ -26,7 +26,7 @@ def test_bringup_starts_the_instances_before_it_imports_what_it_may_not_need():
     # YAML (a parameter file given), temporary files and ctypes (a host's
     # bringup): 60 ms before the first process starts, where none is needed
     shown = subprocess.run(
-        [sys.executable, '-c', 'import sys, robmosys_runtime.bringup\n'
+        [sys.executable, '-c', 'import sys, robmosys_runtime.system.bringup\n'
          "print(sorted({'yaml', 'tempfile', 'ctypes'} & set(sys.modules)))"],
         capture_output=True, text=True, timeout=60, check=True)
     assert shown.stdout.strip() == '[]'
@@ -35,7 +35,7 @@ def test_bringup_starts_the_instances_before_it_imports_what_it_may_not_need():
 def test_the_check_of_parameter_files_runs_without_rclpy():
     # check_params runs offline, where the system is installed: no rclpy, no graph
     shown = subprocess.run(
-        [sys.executable, '-c', 'import sys, robmosys_runtime.paramcheck\n'
+        [sys.executable, '-c', 'import sys, robmosys_runtime.tools.paramcheck\n'
          "print(sorted(m for m in sys.modules if m.split('.')[0] == 'rclpy'))"],
         capture_output=True, text=True, timeout=60, check=True)
     assert shown.stdout.strip() == '[]'

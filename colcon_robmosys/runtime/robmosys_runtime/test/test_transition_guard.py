@@ -13,7 +13,7 @@ from lifecycle_msgs.msg import Transition
 from lifecycle_msgs.srv import ChangeState
 import rclpy
 from robmosys_runtime.executors import EXECUTORS
-from robmosys_runtime.lifecycle_calls import LifecycleCalls
+from robmosys_runtime.system.lifecycle_calls import LifecycleCalls
 from robmosys_runtime.transitions import TransitionGuard
 
 #: a component's process whose activation takes a second; argv: its node's name,

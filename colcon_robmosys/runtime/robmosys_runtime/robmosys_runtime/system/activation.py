@@ -1,0 +1,323 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""
+Bring the managed instances of a system up: configure them, activate them in order.
+
+Each instance is driven through its lifecycle services (``get_state``,
+``change_state``), never by waiting for ``transition_event`` messages alone:
+those are volatile, and one published before the subscription matched is
+lost, which left bring-ups waiting forever. Every instance is configured at
+once; each is activated as soon as it is inactive and the instances it comes
+after are active. A failure is reported with what it holds back.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from typing import Callable, Dict, List, Mapping, Optional, Sequence
+
+from lifecycle_msgs.msg import Transition
+from rclpy.node import Node
+from robmosys_runtime.system import levels
+from robmosys_runtime.system.levels import Outcome
+from robmosys_runtime.system.lifecycle_calls import Failed, LifecycleCalls, Stopped
+
+
+#: what tells the state of an instance its process told: (instance, stopped) -> state or None
+Told = Callable[[str, Callable[[], bool]], Optional[str]]
+
+
+class SystemActivation:
+    """
+    Configure every managed instance and activate each after the ones it names.
+
+    The node's executor must spin in another thread (launch_ros spins its own
+    node; a test spins one): answers are waited for on events.
+
+    :param instances: instance name -> fully qualified node name
+    :param after: instance name -> the instances that must be active first
+    :param timeout: seconds for each transition
+    :param start_timeout: seconds for each instance to appear (its process starts),
+        by default ``timeout``
+    :param report: called with ``(level, text)``, level ``'info'`` or ``'error'``
+    :param timeouts: instance name -> seconds for each of its transitions, where
+        the model sets it (``timeout`` otherwise)
+    :param told: called with an instance and what says that its bring-up
+        ended, at the instance's bring-up: the state its process told
+        (:meth:`robmosys_runtime.hosting.reports.Reports.take`), taken as its state,
+        or None: the instance is asked
+    """
+
+    def __init__(self, node: Node, instances: Mapping[str, str],
+                 after: Mapping[str, Sequence[str]], *, timeout: float = 60.0,
+                 start_timeout: Optional[float] = None,
+                 report: Optional[Callable[[str, str], None]] = None,
+                 timeouts: Optional[Mapping[str, float]] = None,
+                 told: Optional[Told] = None) -> None:
+        self._node = node
+        self._instances = dict(instances)
+        self._after = {name: list(after.get(name, ())) for name in instances}
+        self._timeouts = dict(timeouts or {})
+        self._report = report or self._log
+        self._told = told
+        self._states: Dict[str, str] = {}
+        self._failed: Dict[str, str] = {}
+        self._changed = threading.Condition()
+        self._stop = threading.Event()
+        self._threads: List[threading.Thread] = []
+        # instances whose process told their state: their clients are made
+        # once the bring-up threads have ended (see _prepare)
+        self._unprepared: List[str] = []
+        self._preparer: Optional[threading.Thread] = None
+        self._calls = LifecycleCalls(
+            node, instances, timeout=timeout,
+            start_timeout=timeout if start_timeout is None else start_timeout,
+            timeouts=self._timeouts, stop=self._stop, failed=self._has_failed)
+
+    def _has_failed(self, name: str) -> bool:
+        with self._changed:
+            return name in self._failed
+
+    def _log(self, level: str, text: str) -> None:
+        logger = self._node.get_logger()
+        (logger.error if level == 'error' else logger.info)(text)
+
+    def start(self, names: Optional[Sequence[str]] = None) -> None:
+        """
+        Start bringing instances up (every one by default), each in a thread of its own.
+
+        An instance brought up again (its process was started again, or the
+        system is brought up after a bring-down) loses its failure, and so
+        does what it held back.
+        """
+        self._stop.clear()
+        names = list(self._instances) if names is None else list(names)
+        with self._changed:
+            self._threads = [t for t in self._threads if t.is_alive()]
+            for name in names:
+                self._failed.pop(name, None)
+                self._states.pop(name, None)
+        for name in names:
+            thread = threading.Thread(target=self._bring_up, args=(name,), daemon=True,
+                                      name=f'activate {name}')
+            thread.start()
+            self._threads.append(thread)
+
+    def restart(self, *names: str) -> None:
+        """Bring instances up again, with what their failure held back."""
+        states = self.states()
+        todo = list(names)
+        for name in names:
+            todo += [n for n in self._waiting_for(name)
+                     if states.get(n) != 'active' and n not in todo]
+        self.start(todo)
+
+    def states(self) -> Dict[str, str]:
+        """Return the last known state of each instance brought up (``failed`` if it failed)."""
+        with self._changed:
+            states = dict(self._states)
+            states.update(dict.fromkeys(self._failed, 'failed'))
+            return states
+
+    def failures(self) -> Dict[str, str]:
+        """Return the failed instances and why they failed."""
+        with self._changed:
+            return dict(self._failed)
+
+    def discovering(self, name: str) -> bool:
+        """Tell whether an instance's get_state is still being discovered (see probe)."""
+        return self._calls.discovering(name)
+
+    def probe(self, name: str, timeout: float) -> Optional[str]:
+        """Return the state an instance tells within timeout, or None (a heartbeat)."""
+        try:
+            return self._calls.get_state(name, timeout=timeout)
+        except (Failed, Stopped):
+            return None
+
+    def wait(self, timeout: Optional[float] = None) -> Outcome:
+        """Wait until every instance is active or cannot be; return the outcome."""
+        deadline = None if timeout is None else time.monotonic() + timeout
+        for thread in self._threads:
+            thread.join(None if deadline is None else max(0.0, deadline - time.monotonic()))
+        with self._changed:
+            outcome = Outcome(active=sorted(n for n, s in self._states.items() if s == 'active'),
+                              failed=dict(self._failed))
+        for name in self._instances:
+            if name not in outcome.active and name not in outcome.failed:
+                outcome.held_back[name] = self._blockers(name)
+        return outcome
+
+    def running(self) -> bool:
+        """Tell whether instances are still being brought up."""
+        return any(thread.is_alive() for thread in self._threads)
+
+    def stop(self) -> None:
+        """Stop bringing instances up, quietly: the system is shutting down."""
+        self._stop.set()
+        with self._changed:
+            self._changed.notify_all()
+
+    def close(self, timeout: float = 5.0) -> None:
+        """
+        Stop, and wait for the clients being made in the background (before the node goes).
+
+        A client made while the node is destroyed raises in that thread.
+        """
+        self.stop()
+        with self._changed:
+            preparer = self._preparer
+        if preparer is not None:
+            preparer.join(timeout)
+
+    def instance_failed(self, name: str, why: str) -> None:
+        """Report that an instance failed outside its transitions (its process died)."""
+        with self._changed:
+            known = name in self._failed
+            self._states.pop(name, None)
+        if not known:
+            self._fail(name, why)
+
+    def bring_down(self, timeout: float = 10.0) -> List[str]:
+        """
+        Deactivate, then clean up, every instance, those that come after others first.
+
+        An instance goes down once every instance that comes after it is down;
+        the instances of one such level go down at once, each in a thread.
+
+        :returns: what was done (``deactivate <name>``, ``cleanup <name>``): each
+            instance's steps in order, a level's after the next level's
+        """
+        for thread in self._threads:
+            thread.join()
+        # the bring-up is over (stopped or not): the services are used again
+        self._stop.clear()
+        done: List[str] = []
+        remaining = [n for n in reversed(self.order()) if n not in self._failed]
+        while remaining:
+            level = [n for n in remaining
+                     if not any(n in self._after[m] for m in remaining)] or remaining
+            threads = [threading.Thread(target=self._bring_down_one,
+                                        args=(name, timeout, done), daemon=True,
+                                        name=f'bring down {name}') for name in level]
+            for thread in threads:
+                thread.start()
+            for thread in threads:
+                thread.join()
+            remaining = [n for n in remaining if n not in level]
+        return done
+
+    def _bring_down_one(self, name: str, timeout: float, done: List[str]) -> None:
+        try:
+            wait = min(timeout, self._timeouts.get(name, timeout))
+            state = self._calls.get_state(name, timeout=wait)
+            if state == 'active':
+                self._calls.change(name, Transition.TRANSITION_DEACTIVATE, wait)
+                done.append(f'deactivate {name}')
+                state = 'inactive'
+            if state == 'inactive':
+                self._calls.change(name, Transition.TRANSITION_CLEANUP, wait)
+                done.append(f'cleanup {name}')
+                state = 'unconfigured'
+            self._set(name, state or 'unknown')
+        except (Failed, Stopped) as problem:
+            self._report('error', f'instance {name} could not be brought down: {problem}')
+
+    def order(self) -> List[str]:
+        """Return the instances in an order where each comes after those it names."""
+        return levels.order(self._after)
+
+    # one instance
+
+    def _bring_up(self, name: str) -> None:
+        try:
+            state = self._told(name, lambda: self._stop.is_set() or self._has_failed(name)) \
+                if self._told is not None else None
+            if state is not None:
+                self._prepare_later(name)
+            else:
+                state = self._calls.get_state(name) or 'unknown'
+            if state == 'unconfigured':
+                state = self._calls.change(name, Transition.TRANSITION_CONFIGURE)
+            if state == 'inactive':
+                self._wait_for_predecessors(name)
+                state = self._calls.change(name, Transition.TRANSITION_ACTIVATE)
+                if state == 'active':
+                    self._report('info', f'instance {name} is active')
+            self._set(name, state)
+            if state != 'active':
+                self._fail(name, f'is {state}, not active')
+        except Stopped:
+            return
+        except Failed as failure:
+            self._fail(name, str(failure))
+
+    def _prepare_later(self, name: str) -> None:
+        """Have the clients of an instance made, in the background, after the bring-up."""
+        with self._changed:
+            self._unprepared.append(name)
+            if self._preparer is None:
+                self._preparer = threading.Thread(target=self._prepare, daemon=True,
+                                                  name='lifecycle clients')
+                self._preparer.start()
+
+    def _prepare(self) -> None:
+        """
+        Make the clients of the instances whose process told their state, one by one.
+
+        Their services are then discovered in the background, for the heartbeat
+        and the bring-down. Not before the bring-up threads have ended: two
+        clients per instance, made at once by every thread, held the GIL while
+        the bring-up was to be reported (50 to 70 ms at 20 instances, issue 28).
+        """
+        while True:
+            # start() may add threads after the first told its state
+            alive = [t for t in list(self._threads) if t.is_alive()]
+            if not alive:
+                break
+            alive[0].join()
+        while True:
+            with self._changed:
+                # none left, or the system is shutting down: its node goes (close)
+                if not self._unprepared or self._stop.is_set():
+                    self._preparer = None
+                    return
+                name = self._unprepared.pop(0)
+            self._calls.prepare(name)
+
+    def _wait_for_predecessors(self, name: str) -> None:
+        with self._changed:
+            while True:
+                if self._stop.is_set():
+                    raise Stopped()
+                if self._blockers(name):
+                    # held back, directly or through an instance held back
+                    # itself: the report of the failure names it
+                    raise Stopped()
+                if all(self._states.get(other) == 'active' for other in self._after[name]):
+                    return
+                self._changed.wait(0.5)
+
+    def _set(self, name: str, state: str) -> None:
+        with self._changed:
+            self._states[name] = state
+            self._changed.notify_all()
+
+    def _fail(self, name: str, why: str) -> None:
+        if self._stop.is_set() or not self._node.context.ok():
+            return
+        with self._changed:
+            self._failed[name] = why
+            self._changed.notify_all()
+        waiting = self._waiting_for(name)
+        also = f'; not activated because of it: {", ".join(waiting)}' if waiting else ''
+        self._report('error', f'instance {name} {why}{also}')
+
+    def _blockers(self, name: str) -> List[str]:
+        """Return the failed instances that name waits for, directly or not."""
+        return sorted(levels.predecessors(self._after, name) & set(self._failed))
+
+    def _waiting_for(self, name: str) -> List[str]:
+        """Return the instances that come after name, directly or not."""
+        return levels.successors(self._after, name)

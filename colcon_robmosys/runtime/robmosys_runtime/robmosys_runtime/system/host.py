@@ -1,0 +1,78 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""
+A host's part of a system: ``bringup --host HOST``.
+
+It runs the instances the model puts on its host, starts those marked
+``respawn`` again, and leaves bringing them up to the manager, which runs on
+its own host (``bringup`` without ``--host``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import signal
+import threading
+from typing import Any, Dict
+
+from robmosys_runtime.hosting.output import say
+from robmosys_runtime.hosting.processes import NotInstalled, plan_processes
+from robmosys_runtime.hosting.supervision import not_installed, Processes
+
+
+def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file: str) -> int:
+    """
+    Run the instances of one host until SIGINT or SIGTERM; return the exit status.
+
+    The manager, on its own host, brings them up with the others; instances
+    marked respawn are started again here, and its heartbeat brings them back.
+    """
+    try:
+        groups = plan_processes(description, args.description, params_file, host=args.host,
+                                shared=args.processes)
+    except NotInstalled as error:
+        return not_installed(error)
+    if not groups:
+        say('error', f'no instance of the system runs on the host {args.host}')
+        return 1
+    stopping = threading.Event()
+
+    def exited(group: str, code: int) -> None:
+        if stopping.is_set():
+            return
+        names = groups[group][0]
+        if any(i.get('respawn') for i in description['instances'] if i['instance'] in names):
+            say('error', f"{', '.join(names)} exited with code {code}: starting it again")
+            if not stopping.wait(args.respawn_delay):
+                start(group)
+        else:
+            say('error', f"{', '.join(names)} exited with code {code}")
+
+    # started from the main thread, and again from the thread that watches them
+    # (exited): both live as long as this bringup, and the instances end with it
+    processes = Processes(exited, end_with_parent=True)
+
+    def start(group: str) -> None:
+        processes.start(group, groups[group][1])
+
+    def on_signal(signum: int, frame: Any) -> None:
+        if stopping.is_set():
+            processes.kill()
+            os._exit(128 + signum)
+        stopping.set()
+
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, on_signal)
+    try:
+        for group in groups:
+            start(group)
+        processes.watch()
+        started = sorted(n for names, _ in groups.values() for n in names)
+        say('info', f"host {args.host}: started {', '.join(started)}")
+        while not stopping.wait(0.5):
+            pass
+    finally:
+        ended = processes.stop()
+    # 1: a process needed SIGKILL
+    return 0 if ended else 1

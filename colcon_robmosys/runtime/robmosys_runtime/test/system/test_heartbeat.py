@@ -1,0 +1,123 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""The heartbeat asks every instance at once, and brings back what its host started again."""
+
+import threading
+import time
+
+from robmosys_runtime.system import heartbeat
+from robmosys_runtime.system.heartbeat import Heartbeat
+
+
+class Instances:
+    """A system's activation as the heartbeat sees it: states, answers, restarts."""
+
+    def __init__(self, answers, delay=0.0) -> None:
+        self.answers = dict(answers)
+        self.delay = delay
+        self.restarted = []
+        self.failed = {}
+        self.asked = []
+        #: told active by their process, their get_state not discovered yet
+        self.discovered_later = set()
+
+    def running(self) -> bool:
+        return False
+
+    def states(self):
+        return dict.fromkeys(self.answers, 'active')
+
+    def probe(self, name, timeout):
+        self.asked.append((name, time.monotonic()))
+        if self.answers[name] is None:
+            time.sleep(timeout)
+        time.sleep(self.delay)
+        return self.answers[name]
+
+    def discovering(self, name) -> bool:
+        return name in self.discovered_later
+
+    def restart(self, *names) -> None:
+        self.restarted.append(names)
+
+    def instance_failed(self, name, why) -> None:
+        self.failed[name] = why
+
+
+def _beat(instances, silent, here=(), respawn=()):
+    described = {n: {'respawn': n in respawn} for n in instances.answers}
+    return Heartbeat(instances, 0.2, silent, described, set(here), lambda: True)
+
+
+def test_silent_instances_are_reported_after_three_heartbeats_however_many(monkeypatch):
+    said = []
+    monkeypatch.setattr(heartbeat, 'say', lambda level, text: said.append((level, text)))
+    names = [f'node{n}' for n in range(6)]
+    instances = Instances(dict.fromkeys(names, None))
+    silent = {}
+    stopping = threading.Event()
+    beating = threading.Thread(target=_beat(instances, silent).run, args=(stopping,))
+    start = time.monotonic()
+    beating.start()
+    while len(silent) < len(names) and time.monotonic() - start < 10:
+        time.sleep(0.01)
+    took = time.monotonic() - start
+    stopping.set()
+    beating.join(5)
+    assert sorted(silent) == names
+    assert set(silent.values()) == {'no answer for 0.6 s'}
+    # asked at once, not one after the other: six silent instances do not take six times
+    # as long (0.2 s each would be 3.6 s for three heartbeats)
+    assert took < 3.0, took
+    assert ('error', 'instance node0 does not answer (heartbeat): no answer for 0.6 s') in said
+
+
+def test_an_instance_whose_service_is_still_discovered_is_not_silent_until_it_is():
+    instances = Instances({'told': None, 'asked': None})
+    instances.discovered_later = {'told'}
+    silent = {}
+    beat = _beat(instances, silent)
+    for _ in range(3):
+        beat.heard({'told': None, 'asked': None})
+    # its process said it is active; its get_state is still to be discovered
+    assert list(silent) == ['asked']
+    instances.discovered_later.clear()
+    for _ in range(3):
+        beat.heard({'told': None, 'asked': None})
+    assert sorted(silent) == ['asked', 'told']
+
+
+def test_what_answers_again_is_told_and_what_came_back_is_brought_up_together(monkeypatch):
+    said = []
+    monkeypatch.setattr(heartbeat, 'say', lambda level, text: said.append((level, text)))
+    instances = Instances({'sender': 'unconfigured', 'server': 'unconfigured',
+                           'receiver': 'active', 'local': 'unconfigured'})
+    silent = {'sender': 'no answer for 3 s', 'server': 'no answer for 3 s',
+              'receiver': 'no answer for 3 s'}
+    beat = _beat(instances, silent, here={'local'})
+    beat.heard(instances.answers)
+    # one bring-up for both: each would bring their successors up too
+    assert instances.restarted == [('sender', 'server')]
+    assert silent == {'local': 'it is unconfigured, not active'}
+    # an instance this manager started, unconfigured: cleaned up behind its back
+    assert instances.failed == {'local': 'is unconfigured, not active'}
+    assert ('info', 'instance receiver answers again (heartbeat)') in said
+    assert ('info', 'instance sender came back (heartbeat): bringing it up') in said
+
+
+def test_an_instance_marked_respawn_comes_back_here_too():
+    beat = _beat(Instances({'a': None, 'b': None}), {}, here={'a', 'b'}, respawn={'a'})
+    assert beat.restartable('a') and not beat.restartable('b')
+
+
+def test_a_failed_instance_of_another_host_comes_back_once_its_process_went(monkeypatch):
+    monkeypatch.setattr(heartbeat, 'say', lambda level, text: None)
+    instances = Instances({'remote': 'unconfigured', 'local': None})
+    beat = _beat(instances, {}, here={'local'})
+    # its configure failed: it answers unconfigured all along, and is not retried
+    beat.heard({'remote': 'unconfigured'}, failed={'remote'})
+    assert instances.restarted == []
+    # its host's bringup was killed (no answer), then started again
+    beat.heard({'remote': None}, failed={'remote'})
+    beat.heard({'remote': 'unconfigured'}, failed={'remote'})
+    assert instances.restarted == [('remote',)]
