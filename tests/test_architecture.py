@@ -134,6 +134,59 @@ def test_the_cycle_check_finds_a_cycle():
     assert _cycle({'a': {'b'}, 'b': set()}) is None
 
 
+def _module_name(path: Path) -> str:
+    """Return the dotted name of a source file of the package."""
+    parts = path.relative_to(REPO).with_suffix('').parts
+    return '.'.join(parts[:-1] if parts[-1] == '__init__' else parts)
+
+
+def _module_graph() -> dict[str, set[str]]:
+    """Return module -> the modules of the package it imports, in functions too.
+
+    A module counts by the name it imports, not by the packages above it
+    that Python runs first (``colcon_robmosys.mapping.backends.cpp`` is an
+    edge to that module, not to ``colcon_robmosys.mapping.backends``).
+    """
+    paths = {_module_name(p): p for p in _sources(PACKAGE) if RUNTIME_PACKAGE not in p.parents}
+    return {name: {m for m in _imports(path) if m in paths and m != name}
+            for name, path in paths.items()}
+
+
+def _cycles(graph: dict[str, set[str]]) -> list[str]:
+    """Return a cycle ``a -> b -> a`` for every import that closes one."""
+    state: dict[str, int] = {}
+    found = []
+
+    def visit(node: str, path: list[str]) -> None:
+        state[node] = 1
+        for child in sorted(graph.get(node, ())):
+            if state.get(child) == 1:
+                trail = path + [node]
+                found.append(' -> '.join(trail[trail.index(child):] + [child]))
+            elif not state.get(child):
+                visit(child, path + [node])
+        state[node] = 2
+
+    for node in sorted(graph):
+        if not state.get(node):
+            visit(node, [])
+    return found
+
+
+def test_no_import_cycle_between_modules():
+    cycles = _cycles(_module_graph())
+    assert not cycles, 'import cycles:\n' + '\n'.join(cycles)
+
+
+def test_the_cycle_test_finds_what_it_looks_for():
+    assert _cycles({'a': {'b'}, 'b': {'c'}, 'c': {'b', 'd'}, 'd': set()}) == ['b -> c -> b']
+    assert _cycles({'a': {'a'}}) == ['a -> a']
+    graph = _module_graph()
+    assert 'colcon_robmosys.generators.writer' in graph['colcon_robmosys.generators']
+    # imported in a function, and the package's own __init__.py
+    assert 'colcon_robmosys' in graph['colcon_robmosys.report.formats']
+
+
 def test_pipeline_is_not_importing_glue_or_devtools():
     graph = _package_graph()
     for own in LAYERS:

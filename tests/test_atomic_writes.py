@@ -28,7 +28,7 @@ from colcon_robmosys.check.index import InterfaceIndex
 from colcon_robmosys.generators import Durable, generate_package, MANIFEST, read_manifest
 from colcon_robmosys.generators import plan_package
 from colcon_robmosys.generators.durable import NEW_SUFFIX
-from colcon_robmosys.generators.writer import TEMP_SUFFIX
+from colcon_robmosys.generators.fileops import TEMP_SUFFIX
 from conftest import TEST_WORKSPACE
 
 #: Generates every model of argv[1] into argv[2]/<package>; says 'go' once

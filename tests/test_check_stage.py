@@ -27,6 +27,7 @@ from colcon_robmosys.devtools import ros_env
 from colcon_robmosys.errors import RobmosysError
 from colcon_robmosys.generators import plan_package
 from colcon_robmosys.generators.render import render
+from colcon_robmosys.mapping.backends import DEFAULT_EXECUTORS
 from colcon_robmosys.mapping.component import plan_component
 from colcon_robmosys.model.build import FileBuilder
 from colcon_robmosys.model.files import packages_of
@@ -190,7 +191,7 @@ def test_mapping_calls_what_the_check_let_through_an_internal_error(language: st
     assert isinstance(component, Component)
     assert component.language.value == language
     with pytest.raises(RobmosysError) as error:
-        plan_component(component)
+        plan_component(component, DEFAULT_EXECUTORS[component.language])
     (diagnostic,) = error.value.diagnostics
     assert diagnostic.location.path == str(path)
     assert (diagnostic.location.line, diagnostic.location.column) == (21, 7)
@@ -207,7 +208,7 @@ def test_mapping_calls_a_port_it_cannot_map_an_internal_error(index: InterfaceIn
         port.type, kind=InterfaceKind.SRV if port.type.kind is InterfaceKind.MSG
         else InterfaceKind.MSG)),) + component.ports[1:])
     with pytest.raises(RobmosysError) as error:
-        plan_component(broken)
+        plan_component(broken, DEFAULT_EXECUTORS[broken.language])
     (diagnostic,) = error.value.diagnostics
     assert diagnostic.location == port.location
     assert diagnostic.message.startswith(f"internal error: port '{port.name}'")

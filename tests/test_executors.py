@@ -21,6 +21,7 @@ import yaml
 
 from colcon_robmosys.devtools.ros_env import background
 from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
+from colcon_robmosys.mapping.backends import DEFAULT_EXECUTORS
 from colcon_robmosys.mapping.executors import component_executor, shared_executor
 from colcon_robmosys.mapping.system import ACTION_PARTS
 from colcon_robmosys.model.types import Executor
@@ -163,21 +164,25 @@ def _worked(output: str) -> dict[str, bool]:
 
 def test_the_default_is_named_or_the_language_s_unless_a_function_blocks():
     models = _models()
-    assert component_executor(_component(models['multi-threaded'][0])) is \
-        Executor.MULTI_THREADED
-    assert component_executor(_component(models['multi-threaded'][1])) is \
-        Executor.MULTI_THREADED
-    assert component_executor(_component(models['events'][0])) is Executor.EVENTS
-    assert component_executor(_component(models['single-threaded'][0])) is \
-        Executor.SINGLE_THREADED
+    assert _executor(_component(models['multi-threaded'][0])) is Executor.MULTI_THREADED
+    assert _executor(_component(models['multi-threaded'][1])) is Executor.MULTI_THREADED
+    assert _executor(_component(models['events'][0])) is Executor.EVENTS
+    assert _executor(_component(models['single-threaded'][0])) is Executor.SINGLE_THREADED
     components = [_component(m[1]) for m in models.values()]
-    assert shared_executor(None, components) is Executor.MULTI_THREADED
-    assert shared_executor(None, components[1:2]) is Executor.SINGLE_THREADED
-    assert shared_executor(Executor.EVENTS, components[1:2]) is Executor.EVENTS
+    assert shared_executor(None, components, DEFAULT_EXECUTORS) is Executor.MULTI_THREADED
+    assert shared_executor(None, components[1:2], DEFAULT_EXECUTORS) is \
+        Executor.SINGLE_THREADED
+    assert shared_executor(Executor.EVENTS, components[1:2], DEFAULT_EXECUTORS) is \
+        Executor.EVENTS
     # C++'s default, where no function blocks, is rclcpp's EventsExecutor
     cpp = _component({**{k: v for k, v in models['events'][0].items() if k != 'executor'},
                       'language': 'cpp'})
-    assert component_executor(cpp) is Executor.EVENTS
+    assert _executor(cpp) is Executor.EVENTS
+
+
+def _executor(component) -> Executor:
+    """Return the executor of a component's own process, its backend's the default."""
+    return component_executor(component, DEFAULT_EXECUTORS[component.language])
 
 
 def _component(raw: dict):

@@ -59,7 +59,8 @@ def plan_package(workspace: Workspace, package: str) -> PackageFiles:
         made = interfaces_package(plan_interfaces(model), model_dir)
     elif isinstance(model, Component):
         language = backend(model.language)
-        context = language.spell(model, plan_component(model), user_folders(model, workspace))
+        context = language.spell(model, plan_component(model, language.default_executor),
+                                 user_folders(model, workspace))
         made = component_package(language, context, model_dir, model.location)
     else:
         made = system_package(plan_system(model, workspace), model_dir)

@@ -42,7 +42,7 @@ from pathlib import Path
 import shutil
 from typing import Callable, Iterable
 
-from colcon_robmosys.generators.writer import (
+from colcon_robmosys.generators.fileops import (
     remove_generated, remove_user_leftovers, write_temp)
 
 #: How the hidden folder a new package is written into ends.

@@ -10,29 +10,19 @@ manifest of what it wrote and says what it did (:class:`GenerationReport`).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-import itertools
 import os
 from pathlib import Path
-from typing import Iterable, TYPE_CHECKING
 
 from colcon_robmosys.errors import Diagnostic, Location, RobmosysError
+from colcon_robmosys.generators.durable import Durable
+from colcon_robmosys.generators.fileops import (
+    remove_generated, remove_leftovers, remove_user_leftovers, write_temp)
 from colcon_robmosys.generators.manifest import (
     digest, MANIFEST, Manifest, manifest_bytes, read_manifest, unchanged_since)
 from colcon_robmosys.mapping.common import GENERATED_BY
 
-if TYPE_CHECKING:  # the durable batch writes through this module
-    from colcon_robmosys.generators.durable import Durable
-
 #: Every generated file carries this text in its banner.
 GENERATED_MARKER = GENERATED_BY.encode('utf-8')
-
-#: How temporary files end: a run killed before it renamed one leaves it,
-#: and the next generation removes it (see remove_leftovers).
-TEMP_SUFFIX = '.robmosys-tmp'
-
-
-#: Numbers the temporary files of this process.
-_counter = itertools.count()
 
 
 class _Unread:
@@ -49,43 +39,6 @@ def is_generated(path: Path) -> bool:
             return GENERATED_MARKER in stream.read(2048)
     except OSError:
         return False
-
-
-def write_temp(path: Path, data: bytes, executable: bool, *,
-               sync: bool) -> Path:
-    """Write data to a new temporary file beside path; return its path.
-
-    :param sync: flush the data to the disk before returning, so that a
-      rename or link that follows cannot outlive it in a power cut
-    """
-    # created with its final mode (the umask applies), so that no chmod
-    # follows; O_EXCL: a name another process took is tried again
-    mode = 0o777 if executable else 0o666
-    while True:
-        temp = path.parent / \
-            f'.{path.name}.{os.getpid()}-{next(_counter)}{TEMP_SUFFIX}'
-        try:
-            fd = os.open(temp, os.O_WRONLY | os.O_CREAT | os.O_EXCL |
-                         getattr(os, 'O_CLOEXEC', 0), mode)
-            break
-        except FileExistsError:
-            continue
-        except FileNotFoundError:
-            # the folder is new: made once for all its files, not tried
-            # before each (a mkdir per file was a third of a first generation)
-            if path.parent.is_dir():
-                raise
-            path.parent.mkdir(parents=True, exist_ok=True)
-    try:
-        with os.fdopen(fd, 'wb') as stream:
-            stream.write(data)
-            if sync:
-                stream.flush()
-                os.fsync(stream.fileno())
-    except BaseException:  # noqa: B902 - no temporary file outlives a failure
-        os.unlink(temp)
-        raise
-    return temp
 
 
 def _mode(executable: bool) -> int:
@@ -170,64 +123,6 @@ def create_user_file(path: Path, data: bytes) -> bool:
     finally:
         os.unlink(temp)
     return True
-
-
-def remove_user_leftovers(path: Path) -> None:
-    """Remove what a run killed before it linked a file of the user's left behind."""
-    prefix = f'.{path.name}.'
-    try:
-        names = os.listdir(path.parent)
-    except FileNotFoundError:
-        names = []
-    for name in names:
-        if name.startswith(prefix) and name.endswith(TEMP_SUFFIX):
-            os.unlink(path.parent / name)
-
-
-def remove_generated(path: Path, root: Path) -> bool:
-    """Remove a file an earlier generation wrote, and emptied folders.
-
-    :param root: the folder of the generated package, which stays
-    :returns: whether the file was there
-    """
-    try:
-        path.unlink()
-    except FileNotFoundError:
-        return False
-    parent = path.parent
-    while parent != root and root in parent.parents:
-        try:
-            parent.rmdir()
-        except OSError:
-            break
-        parent = parent.parent
-    return True
-
-
-def remove_leftovers(root: Path, manifest: Iterable[str] = ()) -> list[Path]:
-    """Remove the temporary files a killed generation left below root.
-
-    A generation writes its manifest before any other file, so its
-    temporary files lie in root or in a folder of a file of the manifest:
-    only those folders are looked at, not the whole tree.
-
-    :param manifest: the files (relative to root) of the last manifest
-    :returns: the files removed
-    """
-    folders = {root} | {(root / relative).parent for relative in manifest}
-    removed = []
-    for folder in sorted(folders):
-        try:
-            entries = list(os.scandir(folder))
-        except (FileNotFoundError, NotADirectoryError):
-            continue
-        for entry in entries:
-            if entry.name.startswith('.') and \
-                    entry.name.endswith(TEMP_SUFFIX) and \
-                    entry.is_file(follow_symlinks=False):
-                os.unlink(entry.path)
-                removed.append(Path(entry.path))
-    return sorted(removed)
 
 
 @dataclass

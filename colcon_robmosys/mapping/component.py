@@ -146,9 +146,11 @@ class ComponentPlan:
         return dict(self.lifecycle).get(transition, ())
 
 
-def plan_component(component: Component) -> ComponentPlan:
+def plan_component(component: Component, default_executor: Executor) -> ComponentPlan:
     """Map a checked component to its plan.
 
+    :param default_executor: its backend's executor of a component that names
+      none and blocks no thread (``Backend.default_executor``)
     :raises RobmosysError: an internal error, if the check let through a
       model this cannot map (a function two ports would call differently)
     """
@@ -182,7 +184,7 @@ def plan_component(component: Component) -> ComponentPlan:
         parameters=component.parameters,
         lifecycle=component.lifecycle,
         depends=tuple(model_dependencies(component)),
-        executor=component_executor(component))
+        executor=component_executor(component, default_executor))
 
 
 def _function(function: Function, ports: list[PortPlan],

@@ -9,17 +9,18 @@ message. A single thread is correct unless a function waits, inside a callback,
 for an answer that the executor itself has to deliver: a blocking ``call`` of a
 query client or ``send_goal`` of an action client (``blocking_calls`` of the
 port-kind table). Such a component needs the multi-threaded executor; the others
-run on their backend's default (``Backend.default_executor``).
+run on their backend's default (``Backend.default_executor``), which the callers
+pass in: the backends plan their components with this module, so it cannot ask them.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 import re
-from typing import Iterable
+from typing import Iterable, Mapping
 
 from colcon_robmosys.mapping.portkinds import port_kind
-from colcon_robmosys.model.types import Component, Executor, Function, Port
+from colcon_robmosys.model.types import Component, Executor, Function, Language, Port
 
 #: from the cheapest to the most capable: a shared process takes the most
 #: capable executor any of its nodes needs
@@ -59,34 +60,40 @@ def blocking_calls(component: Component) -> list[BlockingCall]:
     return found
 
 
-def component_executor(component: Component) -> Executor:
-    """Return the executor of a component's own process: named, or the fastest correct one."""
+def component_executor(component: Component, default: Executor) -> Executor:
+    """Return the executor of a component's own process: named, or the fastest correct one.
+
+    :param default: its backend's executor of a component that names none and
+      blocks no thread (``Backend.default_executor``)
+    """
     if component.executor is not None:
         return component.executor
     if blocking_calls(component):
         return Executor.MULTI_THREADED
-    # the backends' module imports the mapping of components, which imports this one
-    from colcon_robmosys.mapping.backends import backend
-    return backend(component.language).default_executor
+    return default
 
 
-def shared_executor(named: Executor | None, components: Iterable[Component]) -> Executor:
+def shared_executor(named: Executor | None, components: Iterable[Component],
+                    defaults: Mapping[Language, Executor]) -> Executor:
     """Return the executor of a process that several nodes share.
 
     The one the system names, or the most capable that one of the nodes needs.
+
+    :param defaults: language -> its backend's default (``DEFAULT_EXECUTORS``
+      of :mod:`colcon_robmosys.mapping.backends`)
     """
     if named is not None:
         return named
-    return max((component_executor(c) for c in components),
+    return max((component_executor(c, defaults[c.language]) for c in components),
                key=EXECUTOR_ORDER.index, default=Executor.EVENTS)
 
 
-def shared_executors(named: Executor | None, components: Iterable[Component]
-                     ) -> tuple[tuple[str, str], ...]:
+def shared_executors(named: Executor | None, components: Iterable[Component],
+                     defaults: Mapping[Language, Executor]) -> tuple[tuple[str, str], ...]:
     """Return, per language of the generated components, the executor of their shared process."""
     by_language: dict[str, list[Component]] = {}
     for component in components:
         if not component.external:
             by_language.setdefault(component.language.value, []).append(component)
-    return tuple((language, shared_executor(named, listed).value)
+    return tuple((language, shared_executor(named, listed, defaults).value)
                  for language, listed in sorted(by_language.items()))

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import json
 from typing import Any, Iterable
 
-from colcon_robmosys.mapping.backends import node_start
+from colcon_robmosys.mapping.backends import DEFAULT_EXECUTORS, node_start
 from colcon_robmosys.mapping.common import (
     Banner, banner_of, INSTALLED_MODEL, INSTALLED_MODEL_HEADER_LINES, package_xml, PackageXml,
     RUNTIME_PACKAGE, unique)
@@ -296,7 +296,7 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
         declared=tuple((i.name, declared_parameters(i, components[i.name], topics,
                                                     dict(system.parameters)))
                        for i in system.instances),
-        executors=shared_executors(system.executor, components.values()),
+        executors=shared_executors(system.executor, components.values(), DEFAULT_EXECUTORS),
         depends=packages, exec_depends=exec_depends, cpp_container=cpp_container,
         package_xml=package_xml(banner, system.info, buildtool=['ament_cmake'],
                                 depend=(RUNTIME_PACKAGE, 'rclcpp_components')

@@ -22,7 +22,7 @@ from colcon_robmosys.mapping.backends.cpp import CppBackend
 from colcon_robmosys.mapping.backends.python import PythonBackend
 from colcon_robmosys.mapping.component import plan_component
 from colcon_robmosys.mapping.portkinds import PortKind
-from colcon_robmosys.model.types import Component, Language
+from colcon_robmosys.model.types import Component, Executor, Language
 
 #: language -> its backend
 BACKENDS: dict[Language, Backend] = {
@@ -33,6 +33,11 @@ BACKENDS: dict[Language, Backend] = {
 #: every package a backend may need from the ROS 2 prefix
 PREFIX_PACKAGES = tuple(dict.fromkeys(
     name for backend in BACKENDS.values() for name in backend.prefix_packages))
+
+#: language -> the executor of its components that name none and block no
+#: thread, for mapping/executors.py (it lies under the backends: it cannot ask them)
+DEFAULT_EXECUTORS: dict[Language, Executor] = {
+    language: backend.default_executor for language, backend in BACKENDS.items()}
 
 
 def backend(language: Language) -> Backend:
@@ -59,8 +64,9 @@ def node_start(component: Component) -> NodeStart:
     """
     if component.external:
         return NodeStart()
-    return backend(component.language).node_start(plan_component(component))
+    language = backend(component.language)
+    return language.node_start(plan_component(component, language.default_executor))
 
 
-__all__ = ['Backend', 'BACKENDS', 'backend', 'NodeStart', 'node_start', 'PackageFacts',
-           'prefix_dependencies', 'PREFIX_PACKAGES']
+__all__ = ['Backend', 'BACKENDS', 'backend', 'DEFAULT_EXECUTORS', 'NodeStart', 'node_start',
+           'PackageFacts', 'prefix_dependencies', 'PREFIX_PACKAGES']
