@@ -99,55 +99,29 @@ def test_layers_import_only_downwards():
     assert problems == []
 
 
-def _cycle(graph: dict[str, set[str]]) -> str | None:
-    """Return an import cycle of a graph as ``a -> b -> a``, or None."""
-    state: dict[str, int] = {}
-
-    def visit(node: str, path: list[str]) -> str | None:
-        state[node] = 1
-        for child in sorted(graph.get(node, ())):
-            if state.get(child) == 1:
-                # on the way here: the cycle is the way from it
-                trail = [*path, node]
-                return ' -> '.join(trail[trail.index(child):] + [child])
-            if not state.get(child):
-                found = visit(child, path + [node])
-                if found:
-                    return found
-        state[node] = 2
-        return None
-
-    for node in sorted(graph):
-        if not state.get(node):
-            found = visit(node, [])
-            if found:
-                return found
-    return None
-
-
 def test_no_import_cycle_between_subpackages():
-    assert _cycle(_package_graph()) is None
+    cycles = _cycles(_package_graph())
+    assert not cycles, 'import cycles:\n' + '\n'.join(cycles)
 
 
-def test_the_cycle_check_finds_a_cycle():
-    assert _cycle({'a': {'b'}, 'b': {'c'}, 'c': {'b'}, 'd': set()}) == 'b -> c -> b'
-    assert _cycle({'a': {'b'}, 'b': set()}) is None
-
-
-def _module_name(path: Path) -> str:
-    """Return the dotted name of a source file of the package."""
-    parts = path.relative_to(REPO).with_suffix('').parts
+def _module_name(path: Path, base: Path = REPO) -> str:
+    """Return the dotted name of a source file, importable from base."""
+    parts = path.relative_to(base).with_suffix('').parts
     return '.'.join(parts[:-1] if parts[-1] == '__init__' else parts)
 
 
-def _module_graph() -> dict[str, set[str]]:
-    """Return module -> the modules of the package it imports, in functions too.
+def _module_graph(sources: list[Path] | None = None,
+                  base: Path = REPO) -> dict[str, set[str]]:
+    """Return module -> the modules of the same sources it imports, in functions too.
 
-    A module counts by the name it imports, not by the packages above it
-    that Python runs first (``colcon_robmosys.mapping.backends.cpp`` is an
-    edge to that module, not to ``colcon_robmosys.mapping.backends``).
+    By default the package's, without the runtime's own. A module counts by
+    the name it imports, not by the packages above it that Python runs first
+    (``colcon_robmosys.mapping.backends.cpp`` is an edge to that module, not
+    to ``colcon_robmosys.mapping.backends``).
     """
-    paths = {_module_name(p): p for p in _sources(PACKAGE) if RUNTIME_PACKAGE not in p.parents}
+    if sources is None:
+        sources = [p for p in _sources(PACKAGE) if RUNTIME_PACKAGE not in p.parents]
+    paths = {_module_name(p, base): p for p in sources}
     return {name: {m for m in _imports(path) if m in paths and m != name}
             for name, path in paths.items()}
 
@@ -231,13 +205,6 @@ RUNTIME_ROOMS = {
 MAX_FOLDER_MODULES = 15
 
 
-def _runtime_module(path: Path) -> str:
-    """Return the dotted name of a module of the runtime's Python package."""
-    relative = path.relative_to(RUNTIME_MODULES.parent).with_suffix('')
-    parts = relative.parts[:-1] if relative.name == '__init__' else relative.parts
-    return '.'.join(parts)
-
-
 def _room(module: str) -> str | None:
     """Return the room of a runtime module (or of a name its top exports), else None."""
     parts = module.split('.')
@@ -249,10 +216,8 @@ def _room(module: str) -> str | None:
 
 
 def _runtime_graph() -> dict[str, set[str]]:
-    """Return each module of the runtime -> the modules of the runtime it imports."""
-    sources = {_runtime_module(p): p for p in _sources(RUNTIME_MODULES)}
-    return {name: {m for m in _imports(path) if m in sources and m != name}
-            for name, path in sources.items()}
+    """Return each module of the runtime's Python package -> those of it it imports."""
+    return _module_graph(_sources(RUNTIME_MODULES), RUNTIME_PACKAGE)
 
 
 def test_the_runtime_has_its_rooms():
@@ -269,7 +234,7 @@ def test_the_runtime_has_its_rooms():
 def test_each_room_of_the_runtime_imports_only_the_rooms_below_it():
     problems = []
     for path in _sources(RUNTIME_MODULES):
-        own = _room(_runtime_module(path))
+        own = _room(_module_name(path, RUNTIME_PACKAGE))
         for module in sorted(_imports(path)):
             target = _room(module)
             if target is not None and target != own and target not in RUNTIME_ROOMS[own]:
@@ -280,7 +245,8 @@ def test_each_room_of_the_runtime_imports_only_the_rooms_below_it():
 
 def test_no_module_of_the_runtime_imports_one_of_its_callers():
     """Counting the imports inside functions: each is one the module needs."""
-    assert _cycle(_runtime_graph()) is None
+    cycles = _cycles(_runtime_graph())
+    assert not cycles, 'import cycles:\n' + '\n'.join(cycles)
 
 
 def test_hand_written_and_generated_nodes_import_only_the_component_side():
