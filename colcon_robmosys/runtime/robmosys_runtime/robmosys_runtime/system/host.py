@@ -11,10 +11,11 @@ its own host (``bringup`` without ``--host``).
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import signal
 import threading
-from typing import Any, Dict
+from typing import Any, Dict, Iterator
 
 from robmosys_runtime.hosting.output import say
 from robmosys_runtime.hosting.processes import NotInstalled, plan_processes
@@ -70,9 +71,48 @@ def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file:
         processes.watch()
         started = sorted(n for names, _ in groups.values() for n in names)
         say('info', f"host {args.host}: started {', '.join(started)}")
-        while not stopping.wait(0.5):
-            pass
+        with host_watch(description, args, stopping):
+            while not stopping.wait(0.5):
+                pass
     finally:
         ended = processes.stop()
     # 1: a process needed SIGKILL
     return 0 if ended else 1
+
+
+@contextlib.contextmanager
+def host_watch(description: Dict[str, Any], args: argparse.Namespace,
+               stopping: threading.Event) -> Iterator[None]:
+    """
+    Watch the push ports of this host's instances for the manager, in a with block.
+
+    Only where the watch is on (``--check-period``) and the host has such
+    ports: it listens to them here and sends the manager a summary each check
+    period (:class:`~robmosys_runtime.watch.hosts.HostSummary`), on a node
+    ``<system>_<host>_bringup``.
+    """
+    from robmosys_runtime.watch.conformance import Model
+    from robmosys_runtime.watch.hosts import watched_names
+    if args.check_period <= 0 or not watched_names(Model(description), args.host):
+        yield
+        return
+    import rclpy
+    from rclpy.signals import SignalHandlerOptions
+    from robmosys_runtime.watch.hosts import HostSummary
+    context = rclpy.Context()
+    # SIGINT and SIGTERM stay this bringup's: it ends its processes first
+    rclpy.init(context=context, args=['--ros-args', *description.get('ros_arguments', ())],
+               signal_handler_options=SignalHandlerOptions.NO)
+    node = rclpy.create_node(f"{description['package']}_{args.host}_bringup",
+                             namespace=description.get('namespace') or None, context=context)
+    summary = HostSummary(node, description, args.host, args.check_period)
+    thread = threading.Thread(target=summary.run, args=(stopping,), daemon=True,
+                              name='host watch')
+    thread.start()
+    try:
+        yield
+    finally:
+        stopping.set()
+        thread.join(10)
+        node.destroy_node()
+        context.try_shutdown()

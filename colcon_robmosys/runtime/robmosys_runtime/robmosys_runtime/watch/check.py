@@ -66,9 +66,10 @@ def check_once(description: Dict[str, Any], *, wait: float = 10.0, silence: floa
         watch.period = 0.0
         found = watch.check(states, settled=True)
         # a difference may be discovery still under way here (an endpoint of another
-        # process not yet announced to this new one): only one that lasts counts
+        # process not yet announced to this new one): only one that lasts counts;
+        # and a graph that does not name every end yet is compared again
         settle = time.monotonic() + wait
-        while found and time.monotonic() < settle:
+        while (found or not watch.compared) and time.monotonic() < settle:
             time.sleep(0.5)
             found = watch.check(states, settled=True)
         return list(found.values())

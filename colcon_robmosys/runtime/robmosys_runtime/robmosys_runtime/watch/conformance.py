@@ -59,6 +59,9 @@ class Graph:
     names_with: Optional[Callable[[str, str, str], List[str]]] = None
     #: (node, kind, end) -> [(name, type)] of a node; asked only for a hint
     names_of_node: Optional[Callable[[str, str, str], List[Tuple[str, str]]]] = None
+    #: whether the graph names the node of every end (see :mod:`.graph`): a
+    #: graph that does not is no ground for a difference
+    complete: bool = True
 
 
 @dataclass(frozen=True)

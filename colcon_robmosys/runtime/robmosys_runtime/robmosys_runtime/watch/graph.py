@@ -11,7 +11,8 @@ wanted, which other names have such an end.
 from __future__ import annotations
 
 import importlib
-from typing import Any, List, Tuple
+import time
+from typing import Any, List, Optional, Set, Tuple
 
 from rclpy.node import Node
 from robmosys_runtime.watch.conformance import Endpoint, Graph, Model
@@ -41,18 +42,53 @@ def _service_type(dds: str) -> str:
 
 _FEEDBACK = '/_action/feedback'
 
+#: the node the graph gives an end whose participant's node names it does not
+#: have (rmw_dds_common's placeholders)
+UNKNOWN_NODE = '_NODE_NAMESPACE_UNKNOWN_/_NODE_NAME_UNKNOWN_'
+#: a topic every ROS node publishes on: its writers name every node
+_EVERY_NODE = '/parameter_events'
+#: reads in a row that find ends without a node's name before the reader
+#: reads through a participant made anew
+UNNAMED_READS = 2
+
 
 class GraphReader:
-    """Reads what the ROS graph shows of the names of a model."""
+    """
+    Reads what the ROS graph shows of the names of a model.
 
-    def __init__(self, node: Node, model: Model) -> None:
+    A participant forgets the node names of another one with its lease (a
+    link down for longer than that), and does not get them back when the two
+    meet again: rmw_fastrtps sends the names once, as a ParticipantEntitiesInfo
+    sample, and the reader, which has had that sample, takes no copy of it
+    again; the names come back only with the next change of the other's
+    nodes. Meanwhile the graph shows the other's ends with no node's name
+    (:data:`UNKNOWN_NODE`) and leaves its nodes out; a participant made afresh
+    sees them all. A read with such ends is *incomplete* (``Graph.complete``,
+    no ground for a difference); after :data:`UNNAMED_READS` of them in a row
+    the reader reads through a participant of its own, made anew (one more
+    on its host, from then on), whose reads are incomplete for ``settle``
+    seconds, while it discovers the graph. An end that it cannot name either
+    (the writer of a DDS application that is no ROS node) is taken as it is.
+    """
+
+    def __init__(self, node: Node, model: Model, settle: float = 3.0) -> None:
         self._node = node
+        #: the node whose participant reads the graph: node's, or one of its own
+        self._reading = node
+        self._own: Optional[Node] = None
+        self._settle = settle
+        #: when the reader's own participant was made, until a read after its settle
+        self._fresh: Optional[float] = None
+        self._unnamed_reads = 0
+        #: the ends a participant made afresh could not name either
+        self._nameless: Set[Tuple[int, ...]] = set()
         self._model = model
         self._names = [(name, model.kind(name)) for name in model.ports]
+        node.context.on_shutdown(self.close)
 
     def read(self) -> Graph:
         """Return the nodes, and the ends of every modelled name."""
-        node = self._node
+        node = self._reading
         graph = Graph(nodes=set(node.get_fully_qualified_node_names()),
                       names_with=self._names_with, names_of_node=self._names_of_node)
         for name, kind in self._names:
@@ -67,10 +103,54 @@ class GraphReader:
                     Endpoint(e.node, e.end, e.type[:-len('_FeedbackMessage')]
                              if e.type.endswith('_FeedbackMessage') else e.type, None)
                     for e in ends]
+        graph.complete = self._named(graph)
         return graph
 
+    def _named(self, graph: Graph) -> bool:
+        """Tell whether the graph names the node of each end; renew the reader if not."""
+        now = time.monotonic()
+        if self._fresh is not None and now - self._fresh < self._settle:
+            return False
+        settled, self._fresh = self._fresh is not None, None
+        ends = [*(e for ends in graph.endpoints.values() for e in ends),
+                *self._topic_ends(_EVERY_NODE, 'writer', 'reader')]
+        unnamed = {e.gid for e in ends if e.node == UNKNOWN_NODE} - self._nameless
+        if not unnamed:
+            self._unnamed_reads = 0
+            return True
+        if settled:
+            # a participant that discovered the graph afresh cannot name them either
+            self._nameless |= unnamed
+            return True
+        self._unnamed_reads += 1
+        if self._unnamed_reads >= UNNAMED_READS:
+            self._unnamed_reads = 0
+            self._renew(now)
+        return False
+
+    def _renew(self, now: float) -> None:
+        """Read through a participant of the reader's own, made anew."""
+        import rclpy
+        self.close()
+        context = rclpy.Context()
+        rclpy.init(context=context, args=['--ros-args', '--disable-rosout-logs'])
+        self._own = rclpy.create_node(
+            f'{self._node.get_name()}_graph', namespace=self._node.get_namespace(),
+            context=context, start_parameter_services=False, enable_rosout=False)
+        self._reading = self._own
+        self._fresh = now
+        self._nameless.clear()
+
+    def close(self) -> None:
+        """End the reader's own participant, if it made one."""
+        own, self._own, self._reading = self._own, None, self._node
+        if own is not None:
+            context = own.context
+            own.destroy_node()
+            context.try_shutdown()
+
     def _topic_ends(self, topic: str, writer: str, reader: str) -> List[Endpoint]:
-        node = self._node
+        node = self._reading
         return [Endpoint(_fqn(i.node_namespace, i.node_name), end, i.topic_type, i.qos_profile,
                          tuple(i.endpoint_gid))
                 for end, infos in ((writer, node.get_publishers_info_by_topic(topic)),
@@ -81,9 +161,9 @@ class GraphReader:
         # DDS-based middlewares carry a service as two topics: the server writes
         # the replies, its clients read them
         reply = f'rr{name}Reply'
-        node = self._node
+        node = self._reading
         return [Endpoint(_fqn(i.node_namespace, i.node_name), end,
-                         _service_type(i.topic_type))
+                         _service_type(i.topic_type), None, tuple(i.endpoint_gid))
                 for end, infos in (
                     ('server', node.get_publishers_info_by_topic(reply, no_mangle=True)),
                     ('client', node.get_subscriptions_info_by_topic(reply, no_mangle=True)))
@@ -91,7 +171,7 @@ class GraphReader:
 
     def _names_with(self, kind: str, end: str, type_name: str) -> List[str]:
         """Return the names that have such an end, of that type (for a hint)."""
-        node = self._node
+        node = self._reading
         if kind == 'service':
             names = [n for n, types in node.get_service_names_and_types()
                      if type_name in types]
@@ -110,7 +190,7 @@ class GraphReader:
     def _names_of_node(self, fqn: str, kind: str, end: str) -> List[Tuple[str, str]]:
         """Return (name, type) of the ends of a kind a node has (for a hint)."""
         namespace, _, name = fqn.rpartition('/')
-        node = self._node
+        node = self._reading
         ask: Any
         try:
             if kind == 'topic':

@@ -19,61 +19,46 @@ import time
 from typing import Any, Callable, Dict, List, Optional
 
 from rclpy.node import Node
-from rclpy.qos import (
-    qos_profile_parameter_events, QoSProfile, ReliabilityPolicy)
+from rclpy.qos import qos_profile_parameter_events
 from robmosys_runtime.watch.conformance import compare, Difference, Model, State
-from robmosys_runtime.watch.graph import GraphReader, interface
-
-#: matches every publisher, delivers the last message only
-_LISTEN = QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT)
+from robmosys_runtime.watch.graph import GraphReader
+from robmosys_runtime.watch.hosts import Summaries, Taker, watched_names
 
 
 class Listener:
     """
     When each watched name last carried a message, and the parameters nodes tell.
 
-    The watched topics are read by a node of their own that no executor spins:
-    each check takes the latest message of each (a best-effort subscription
-    of depth 1 keeps only that one, raw). An executor would wake up and run
-    Python for every message: 13 % of a CPU for 10 topics at 10 Hz
-    (bench_watch.py), where a take per topic and check costs next to nothing.
+    The manager listens to the watched push ports of the instances of its own
+    host (:class:`~robmosys_runtime.watch.hosts.Taker`, each check); each
+    other host's ``bringup --host`` to its own, and tells how long ago each
+    carried a message (:class:`~robmosys_runtime.watch.hosts.Summaries`).
     """
 
-    def __init__(self, node: Node, model: Model) -> None:
+    def __init__(self, node: Node, model: Model, description: Dict[str, Any],
+                 period: float) -> None:
         self.heard: Dict[str, float] = {}
         self.parameters: Dict[str, Dict[str, Any]] = {}
         self._lock = threading.Lock()
-        self.names = {p['name']: p['type'] for i in model.instances.values()
-                      for p in i.get('ports', ()) if p.get('period') and not p.get('quiet')}
-        self._taken: List[Any] = []
+        self.names = watched_names(model)
+        local = watched_names(model, '')
+        self._taker = Taker(node, local, f'{node.get_name()}_watch') if local else None
         #: the node of the watched topics, if any ('' otherwise)
-        self.node_name = ''
-        if self.names:
-            import rclpy
-            taker = rclpy.create_node(
-                f'{node.get_name()}_watch', namespace=node.get_namespace(),
-                context=node.context, start_parameter_services=False, enable_rosout=False)
-            self.node_name = taker.get_fully_qualified_name()
-            node.context.on_shutdown(taker.destroy_node)
-            for name, type_name in sorted(self.names.items()):
-                try:
-                    msg_type = interface(type_name)
-                except (ImportError, AttributeError, ValueError):
-                    continue
-                subscription = taker.create_subscription(
-                    msg_type, name, lambda message: None, _LISTEN, raw=True)
-                self._taken.append((name, subscription))
+        self.node_name = self._taker.node.get_fully_qualified_name() if self._taker else ''
+        self._summaries = Summaries(node, description, period, self.heard)
         from rcl_interfaces.msg import ParameterEvent
         self._watched = {i['fqn'] for i in model.instances.values() if i.get('parameters')}
         node.create_subscription(ParameterEvent, '/parameter_events', self._on_parameters,
                                  qos_profile_parameter_events)
 
     def take(self) -> None:
-        """Note which watched topics carried a message since the last take."""
-        now = time.monotonic()
-        for name, subscription in self._taken:
-            if subscription.handle.take_message(subscription.msg_type, True) is not None:
-                self.heard[name] = now
+        """Note which watched topics of this host carried a message since the last take."""
+        if self._taker is not None:
+            self._taker.take(self.heard)
+
+    def tells(self, name: str) -> bool:
+        """Tell whether the silence of a watched name is known here and now."""
+        return self._summaries.tells(name)
 
     def _on_parameters(self, event: Any) -> None:
         if event.node not in self._watched:
@@ -126,18 +111,26 @@ class Watch:
         self._reader = GraphReader(node, self.model)
         #: instances whose parameters were read since they came up
         self._read: set = set()
-        self._listener = Listener(node, self.model)
+        self._listener = Listener(node, self.model, description, period)
         if self._listener.node_name:
             self.model.nodes.add(self._listener.node_name)
         self._report = report or _say
         self._up_since: Dict[str, float] = {}
         #: the differences of the last check, by key
         self.differences: Dict[str, Difference] = {}
+        #: whether the last check compared (the graph named every end)
+        self.compared = False
 
     def check(self, states: Dict[str, str], settled: bool) -> Dict[str, Difference]:
         """Compare the system with its model once; report what appeared and cleared."""
         self._listener.take()
         graph = self._reader.read()
+        self.compared = graph.complete
+        if not graph.complete:
+            # the graph does not name every end yet (a node just made, or the
+            # names lost with a lease): what it leaves out is no ground for a
+            # difference, and what the last checks found stands
+            return self.differences
         now = time.monotonic()
         state = State(parameters=self._listener.values())
         if not settled:
@@ -200,7 +193,8 @@ class Watch:
                 continue
             for port in instance.get('ports', ()):
                 if not port.get('period') or port.get('quiet') or \
-                        port['name'] not in self._listener.names:
+                        port['name'] not in self._listener.names or \
+                        not self._listener.tells(port['name']):
                     continue
                 threshold = max(self.silence * port['period'], 2 * self.period)
                 since = max(self._up_since[name], self._listener.heard.get(port['name'], 0.0))

@@ -1,0 +1,189 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""
+The watch of a system on several hosts: each host listens to its own, only a summary travels.
+
+A reader of a topic on the manager's host pulls every sample across the link
+from the robot that publishes it, whatever its depth: 2 MB/s of camera
+frames become 2 MB/s on Wi-Fi. So the push ports that the watch listens to
+for silence are listened to on the host of their publishers: by the manager
+for the instances of its own host (those without ``host``), and by each
+host's ``bringup --host`` for its own (:class:`HostSummary`), which tells the
+manager, every check period, how long ago each of them carried a message
+(:class:`Summaries`): a ``diagnostic_msgs/DiagnosticStatus`` of a few hundred
+bytes on ``<manager>/hosts``. No message of a modelled topic crosses a link
+for the watch. A name that publishers of several hosts share is not listened
+to at all (its reader would pull the other hosts' samples).
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from typing import Any, Dict, List, Optional
+
+from rclpy.node import Node
+from rclpy.qos import QoSProfile, ReliabilityPolicy
+from robmosys_runtime.watch.conformance import Model
+from robmosys_runtime.watch.graph import interface
+
+#: matches every publisher, delivers the last message only
+_LISTEN = QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT)
+#: the summaries of the hosts: the latest of each, every period; a lost one
+#: is followed by the next
+_SUMMARIES = QoSProfile(depth=16, reliability=ReliabilityPolicy.BEST_EFFORT)
+#: periods after which a host's last summary no longer tells of its ports
+STALE_PERIODS = 3.0
+
+
+def watched_names(model: Model, host: Optional[str] = None) -> Dict[str, str]:
+    """
+    Return name -> type of the push ports the watch listens to for silence.
+
+    Those of periodic activities that may not stay quiet; with ``host``,
+    those whose every publisher runs on it ('': the manager's host).
+    """
+    names: Dict[str, str] = {}
+    hosts: Dict[str, set] = {}
+    for instance in model.instances.values():
+        for port in instance.get('ports', ()):
+            if port.get('period') and not port.get('quiet'):
+                names[port['name']] = port['type']
+                hosts.setdefault(port['name'], set()).add(instance.get('host') or '')
+    if host is None:
+        return names
+    return {n: t for n, t in names.items() if hosts[n] == {host}}
+
+
+def summary_topic(description: Dict[str, Any]) -> str:
+    """Return the topic of the hosts' summaries: ``hosts`` of the manager's node."""
+    namespace = (description.get('namespace') or '').rstrip('/')
+    return f"{namespace}/{description['package']}_bringup/hosts"
+
+
+class Taker:
+    """
+    Raw subscriptions to watched topics, on a node of their own that no executor spins.
+
+    Each take notes which topics carried a message since the last one (a
+    best-effort subscription of depth 1 keeps only the latest, raw). An
+    executor would wake up and run Python for every message: 13 % of a CPU
+    for 10 topics at 10 Hz (bench_watch.py), where a take per topic and check
+    costs next to nothing.
+    """
+
+    def __init__(self, node: Node, names: Dict[str, str], node_name: str) -> None:
+        import rclpy
+        self._taken: List[Any] = []
+        self.node = rclpy.create_node(
+            node_name, namespace=node.get_namespace(), context=node.context,
+            start_parameter_services=False, enable_rosout=False)
+        node.context.on_shutdown(self.node.destroy_node)
+        for name, type_name in sorted(names.items()):
+            try:
+                msg_type = interface(type_name)
+            except (ImportError, AttributeError, ValueError):
+                continue
+            subscription = self.node.create_subscription(
+                msg_type, name, lambda message: None, _LISTEN, raw=True)
+            self._taken.append((name, subscription))
+
+    def take(self, heard: Dict[str, float]) -> None:
+        """Note in heard which topics carried a message since the last take."""
+        now = time.monotonic()
+        for name, subscription in self._taken:
+            if subscription.handle.take_message(subscription.msg_type, True) is not None:
+                heard[name] = now
+
+
+class HostSummary:
+    """
+    A host's part of the watch: its own push ports listened to, a summary sent.
+
+    :param node: the node of the host's ``bringup --host``
+    :param host: the host, as the model names it
+    """
+
+    def __init__(self, node: Node, description: Dict[str, Any], host: str,
+                 period: float) -> None:
+        from diagnostic_msgs.msg import DiagnosticStatus
+        self.host = host
+        self.period = period
+        self.names = watched_names(Model(description), host)
+        self._taker = Taker(node, self.names, f'{node.get_name()}_watch')
+        self._publisher = node.create_publisher(DiagnosticStatus, summary_topic(description),
+                                                _SUMMARIES)
+        self._started = time.monotonic()
+        self.heard: Dict[str, float] = {}
+
+    def send(self) -> None:
+        """Take what the watched topics carried, and tell the manager."""
+        from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
+        self._taker.take(self.heard)
+        now = time.monotonic()
+        # how long ago each carried a message ('' never, since the host's watch began)
+        values = [KeyValue(key='since', value=f'{now - self._started:.3f}')] + [
+            KeyValue(key=name, value=f'{now - self.heard[name]:.3f}' if name in self.heard
+                     else '') for name in sorted(self.names)]
+        self._publisher.publish(DiagnosticStatus(
+            level=DiagnosticStatus.OK, name=f'host {self.host}', hardware_id=self.host,
+            message=f'{len(self.names)} watched', values=values))
+
+    def run(self, stopping: threading.Event) -> None:
+        """Send a summary every period until stopping is set (a thread's target)."""
+        from robmosys_runtime.hosting.output import say
+        while not stopping.wait(self.period):
+            try:
+                self.send()
+            except Exception as error:  # noqa: B902 - the host's watch goes on
+                say('error', f'the watch of host {self.host} failed: '
+                    f'{type(error).__name__}: {error}')
+
+
+class Summaries:
+    """
+    The manager's side: when each port of another host last carried a message.
+
+    :param heard: name -> time.monotonic() it last carried a message, which
+        the summaries fill in for the names of other hosts
+    """
+
+    def __init__(self, node: Node, description: Dict[str, Any], period: float,
+                 heard: Dict[str, float]) -> None:
+        from diagnostic_msgs.msg import DiagnosticStatus
+        model = Model(description)
+        every = watched_names(model)
+        local = watched_names(model, '')
+        hosts = {i.get('host') for i in model.instances.values()} - {None, ''}
+        #: name -> the host that listens to it, for the names of other hosts
+        self.host_of = {n: h for h in sorted(hosts) for n in watched_names(model, h)}
+        #: the names no host listens to (publishers on several hosts)
+        self.unheard = set(every) - set(local) - set(self.host_of)
+        self._period = period
+        self._heard = heard
+        self._lock = threading.Lock()
+        #: host -> time.monotonic() of its last summary
+        self._last: Dict[str, float] = {}
+        if self.host_of:
+            node.create_subscription(DiagnosticStatus, summary_topic(description),
+                                     self._on_summary, _SUMMARIES)
+
+    def _on_summary(self, status: Any) -> None:
+        now = time.monotonic()
+        values = {v.key: v.value for v in status.values}
+        with self._lock:
+            self._last[status.hardware_id] = now
+            for name, ago in values.items():
+                if ago and self.host_of.get(name) == status.hardware_id:
+                    heard = now - float(ago)
+                    if heard > self._heard.get(name, 0.0):
+                        self._heard[name] = heard
+
+    def tells(self, name: str) -> bool:
+        """Tell whether the silence of a name is known: its host's summary is recent."""
+        host = self.host_of.get(name)
+        if host is None:
+            return name not in self.unheard
+        with self._lock:
+            last = self._last.get(host)
+        return last is not None and time.monotonic() - last <= STALE_PERIODS * self._period
