@@ -3,7 +3,7 @@
 """
 The watch on a real site: a camera on a robot, the manager on a base station.
 
-A robot (a network namespace of tests/harness/netns.py) streams 100 kB frames
+A robot (a network namespace of colcon_robmosys/devtools/netns.py) streams 100 kB frames
 at 20 Hz, 2 MB/s, to a viewer on the same robot; the system manager runs on
 ``base``. The conformance watch listens to the stream on the robot, where the
 robot's ``bringup --host`` runs, and tells the manager only how long ago it
@@ -25,10 +25,10 @@ from typing import Iterator
 import pytest
 import yaml
 
+from colcon_robmosys.devtools import netns
 from colcon_robmosys.devtools.ros_env import Background, free_domain_id
 from colcon_robmosys.devtools.system import wait_until
 from conftest import assert_no_traceback, build_workspace, BuiltWorkspace, requires_ros
-from harness import netns
 
 pytestmark = [pytest.mark.integration, requires_ros]
 

@@ -3,7 +3,7 @@
 """
 One system across hosts that are network namespaces, on real rclpy.
 
-Three hosts (tests/harness/netns.py) share one link: ``base`` runs the system
+Three hosts (colcon_robmosys/devtools/netns.py) share one link: ``base`` runs the system
 manager, ``robot1`` and ``robot2`` the instances of examples_system, each
 connection from one robot to the other. Discovery crosses the link by
 multicast, or, with multicast dropped on the link, by ``ROS_STATIC_PEERS``.
@@ -28,10 +28,10 @@ from typing import Any, Iterator
 import pytest
 from test_cpp_system import requires_rclcpp
 
+from colcon_robmosys.devtools import netns
 from colcon_robmosys.devtools.ros_env import Background, free_domain_id
 from colcon_robmosys.devtools.system import wait_until
 from conftest import assert_no_traceback, BuiltWorkspace, requires_ros
-from harness import netns
 
 pytestmark = [pytest.mark.integration, requires_ros]
 

@@ -1,7 +1,7 @@
 # Copyright 2026 The colcon-robmosys authors
 # Licensed under the Apache License, Version 2.0
 """
-Ask a running system from inside a host of tests/harness/netns.py; print the answer as JSON.
+Ask a running system from inside a host of devtools/netns.py; print the answer as JSON.
 
     ros_probe.py trigger /examples_system_bringup/report   -> {"success": .., "message": ..}
     ros_probe.py states /examples/sender /examples/receiver -> {"/examples/sender": "active"}

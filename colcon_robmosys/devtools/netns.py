@@ -52,7 +52,7 @@ LEASE = 8
 #: a Fast DDS profile for one host: UDPv4 on its interfaces, no shared memory, no data
 #: sharing; the lease of LEASE, announced every LEASE / 4 s (Fast DDS: 20 s and 3 s)
 _PROFILE = """<?xml version="1.0" encoding="UTF-8"?>
-<!-- a host of tests/harness/netns.py ({address}): UDPv4 only, no shared memory -->
+<!-- a host of colcon_robmosys/devtools/netns.py ({address}): UDPv4 only, no shared memory -->
 <dds xmlns="http://www.eprosima.com">
   <profiles>
     <transport_descriptors>
