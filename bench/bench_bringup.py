@@ -152,6 +152,18 @@ def description_of(install: Path, package: str) -> Path:
     return install / package / 'share' / package / 'bringup.json'
 
 
+def subset(install: Path, system: str, count: int, dest: Path) -> Path:
+    """Write the system's description with its first pairs only, wired; return its path."""
+    description = json.loads(description_of(install, system).read_text())
+    pairs = (count + 1) // 2
+    names = {f'{kind}_{i}' for i in range(pairs) for kind in ('beat', 'hear')}
+    description['instances'] = [i for i in description['instances'] if i['instance'] in names]
+    description['connections'] = [c for c in description['connections']
+                                  if c['from'].split('.')[0] in names]
+    dest.write_text(json.dumps(description))
+    return dest
+
+
 def bring_up(install: Path, package: str, path: str, layout: str, count: int,
              timeout: float) -> tuple[str, float, float]:
     """

@@ -18,7 +18,6 @@ watch's cost (on - off, fastest of ``--rounds``) in % of one CPU, and
 from __future__ import annotations
 
 import argparse
-import json
 import os
 from pathlib import Path
 import subprocess
@@ -27,33 +26,14 @@ import tempfile
 import time
 from typing import Sequence
 
-from bench_bringup import (
-    _watch, description_of, end_run, MARKER, system_package, write_workspace)
+from bench_bringup import _watch, end_run, MARKER, subset, system_package, write_workspace
 from bench_runtime import build
-from benchlib import best, print_end, print_machine, spread, table
+from benchlib import best, cpu_seconds, print_end, print_machine, spread, table
 from colcon_robmosys.devtools import ros_env
+from watch_hosts import run as run_on_hosts
 
 #: the goal: the watch's cost at 50 instances, in % of one CPU
 GOAL = 2.0
-_TICKS = os.sysconf('SC_CLK_TCK')
-
-
-def subset(install: Path, system: str, count: int, dest: Path) -> Path:
-    """Write the system's description with its first pairs only, wired; return its path."""
-    description = json.loads(description_of(install, system).read_text())
-    pairs = (count + 1) // 2
-    names = {f'{kind}_{i}' for i in range(pairs) for kind in ('beat', 'hear')}
-    description['instances'] = [i for i in description['instances'] if i['instance'] in names]
-    description['connections'] = [c for c in description['connections']
-                                  if c['from'].split('.')[0] in names]
-    dest.write_text(json.dumps(description))
-    return dest
-
-
-def cpu_seconds(pid: int) -> float:
-    """Return the CPU time a process spent so far, user and system, in seconds."""
-    fields = Path(f'/proc/{pid}/stat').read_text().rsplit(')', 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / _TICKS
 
 
 def manager_cpu(install: Path, system: str, description: Path, count: int, period: float, *,
@@ -108,12 +88,17 @@ def main(argv: Sequence[str] | None = None) -> int:
                         help='process layout of the instances (default: shared, so that '
                         'fewer processes compete with the manager for the CPU)')
     parser.add_argument('--timeout', type=float, default=240.0)
+    parser.add_argument('--robots', type=int, default=6,
+                        help='then the same on a site: this many robots and a base station, '
+                        'network namespaces (as root; 0: not run)')
+    parser.add_argument('--robot-sizes', type=int, nargs='+', default=[12],
+                        help='instances of the systems on the robots (default: 12)')
     args = parser.parse_args(argv)
     print_machine("conformance watch: the manager's CPU time per second, on vs off, one run")
     with tempfile.TemporaryDirectory(prefix='robmosys-bench-watch-') as tmp:
         root = Path(tmp)
-        system = system_package(max(args.sizes))
-        write_workspace(root / 'src', [max(args.sizes)])
+        system = system_package(max(args.sizes + args.robot_sizes))
+        write_workspace(root / 'src', [max(args.sizes + args.robot_sizes)])
         install = build(root)
         cases = [(size, period) for size in args.sizes for period in (args.check_period, 0.0)]
         samples: dict[tuple[int, float], list[float]] = {case: [] for case in cases}
@@ -149,6 +134,8 @@ def main(argv: Sequence[str] | None = None) -> int:
                 label = f'every {period:g} s' if period else 'off'
                 print(f'  {size} instances, watch {label}: '
                       f'{spread([100 * v for v in values])}')
+        if args.robots:
+            run_on_hosts(args, install, system, root)
     print_end()
     return 0
 

@@ -25,6 +25,15 @@ VERSIONED = ('colcon-robmosys', 'colcon-core', 'colcon-ros', 'ros-rclpy', 'ros-r
              'fastjsonschema', 'pyyaml')
 
 
+_TICKS = os.sysconf('SC_CLK_TCK')
+
+
+def cpu_seconds(pid: int) -> float:
+    """Return the CPU time a process spent so far, user and system, in seconds."""
+    fields = Path(f'/proc/{pid}/stat').read_text().rsplit(')', 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / _TICKS
+
+
 def cpu_model() -> str:
     """Return the CPU model named in /proc/cpuinfo, or the platform's guess."""
     try:

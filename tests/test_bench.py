@@ -30,6 +30,7 @@ import bench_runtime  # noqa: E402
 import bench_watch  # noqa: E402
 from colcon_robmosys.check import find_model_files, load_workspace  # noqa: E402
 from colcon_robmosys.check.index import InterfaceIndex  # noqa: E402
+from colcon_robmosys.devtools import netns  # noqa: E402
 from colcon_robmosys.generators import generate_package  # noqa: E402
 from colcon_robmosys.generators import plan_package  # noqa: E402
 from conftest import requires_ros  # noqa: E402
@@ -172,13 +173,22 @@ def test_messages_benchmark_prints_its_goals(capsys, pairs):
 def test_watch_benchmark_prints_the_cost_of_the_watch(capsys):
     """The manager's CPU with the watch on and off, and the cost against the goal."""
     assert bench_watch.main(['--sizes', '2', '--rounds', '1', '--settle', '1',
-                             '--window', '1', '--timeout', '90']) == 0
+                             '--window', '1', '--timeout', '90', '--robots', '2',
+                             '--robot-sizes', '4']) == 0
     out = capsys.readouterr().out
     assert len(re.findall(r'round 1, 2 instances, watch .*: \d+\.\d\d % of one CPU',
                           out)) == 2, out
     assert re.search(r'^\| 2 +\| \d+\.\d\d +\| \d+\.\d\d +\| -?\d+\.\d\d +\| '
                      r'(within|above) the goal of 50', out, re.MULTILINE), out
     assert 'reported a difference' not in out, out
+    # on a site: two robots and a base station, where namespaces can be made
+    if netns.unavailable_reason() is None:
+        assert len(re.findall(r'round 1, 4 instances on 2 robots, watch .*: link \d+\.\d\d '
+                              r'KiB/s, manager \d+\.\d\d % of one CPU', out)) == 2, out
+        assert re.search(r'^\| 4 +(\| -?\d+\.\d\d +){4}\| (met|NOT met)', out,
+                         re.MULTILINE), out
+    else:
+        assert 'hosts: not measured: ' in out, out
 
 
 @requires_ros
