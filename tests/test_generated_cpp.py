@@ -103,8 +103,9 @@ def test_layout_of_the_reference(generated_cpp):
         'src-skel/cpp_subscriber/Subscriber_impl.hpp',
         'src-skel/cpp_subscriber/Subscriber_impl.cpp',
         'src/cpp_subscriber/Subscriber_impl.hpp', 'src/cpp_subscriber/Subscriber_impl.cpp',
-        # the model, installed for the workspaces that build on this one
-        'robmosys/robmosys.yaml',
+        # the model, installed for the workspaces that build on this one, and what says
+        # that it is generated and where it was built from (configured by CMake)
+        'robmosys/robmosys.yaml', 'robmosys/source.yaml.in',
     }
     # the skeleton is regenerated but never built
     cmake = (generated_cpp / 'cpp_subscriber' / 'CMakeLists.txt').read_text()

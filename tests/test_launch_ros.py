@@ -16,6 +16,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import time
 
 import pytest
 
@@ -269,6 +270,37 @@ def test_launch_arguments_reach_every_node(test_workspace_built, launch_env, dom
         assert not {('publisher', '/'), ('subscriber', '/')} & set(
             driver.node.get_node_names_and_namespaces())
         assert re.search(r'\[DEBUG\].*publisher', launched.output()), launched.output()
+
+
+@pytest.mark.parametrize('launch_file', [
+    'fleet_system.launch.py', 'fleet_system.nodes.launch.py', 'activate.py',
+    'fleet_system.robot1.publisher.launch.py'])
+def test_a_broken_operators_file_is_refused_before_any_process_starts(
+        test_workspace_built, launch_env, tmp_path, launch_file):
+    """The launch file checks params_file as check_params does: its lines, nothing started."""
+    from test_process_layout import MARKER, processes_marked
+    from test_refused_at_start import BROKEN, BROKEN_LINES
+    (tmp_path / 'site.yaml').write_text(BROKEN)
+    env = dict(launch_env, **{MARKER: f'refused-{launch_file}'})
+    share = test_workspace_built.share('fleet_system')
+    started: set[int] = set()
+    with background([sys.executable, '-c', ARGUMENTS_LAUNCHER,
+                     str(share / 'launch' / launch_file), 'params_file:=site.yaml'],
+                    env=env, cwd=tmp_path) as launched:
+        deadline = time.monotonic() + 60
+        while launched.proc.poll() is None and time.monotonic() < deadline:
+            # any process of the run but the launch's own is one it started
+            started |= set(processes_marked(env[MARKER])) - {launched.proc.pid}
+            time.sleep(0.01)
+        assert launched.proc.poll() == 1, launched.output()
+        output = launched.output()
+    assert not started, output
+    assert 'process started' not in output, output
+    lines = output.splitlines()
+    assert [line for line in lines if line.startswith('site.yaml:')] == BROKEN_LINES, output
+    assert "Caught exception in launch (see debug for traceback): params_file 'site.yaml' " \
+        'does not fit the system fleet_system (3 errors); nothing was started' in output, output
+    assert_no_traceback(output)
 
 
 @pytest.fixture(scope='module')

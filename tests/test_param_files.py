@@ -116,10 +116,16 @@ def test_values_are_typed_as_rcl_types_them():
 def test_a_file_that_cannot_be_read_is_an_error_line(description, tmp_path):
     binary = tmp_path / 'binary.yaml'
     binary.write_bytes(b'\xff\xfe/a: 1\n')
-    found = paramcheck.check_files(description, [str(tmp_path / 'missing.yaml'), str(binary)])
+    # the first byte that is not UTF-8, at its line and column (in characters)
+    latin = tmp_path / 'latin.yaml'
+    latin.write_bytes('/a:\n  ros__parameters:\n    städte: 1\n    frame: caf'.encode()
+                      + b'\xe9\n')
+    found = paramcheck.check_files(description, [str(tmp_path / 'missing.yaml'), str(binary),
+                                                 str(latin)])
     assert [paramcheck.line(p, problem).replace(str(tmp_path), 'T') for p, problem in found] == [
         'T/missing.yaml: error: cannot read it: No such file or directory',
-        'T/binary.yaml: error: not a text in UTF-8 (byte 0)']
+        'T/binary.yaml:1:1: error: not a text in UTF-8 (byte 0xff)',
+        'T/latin.yaml:4:15: error: not a text in UTF-8 (byte 0xe9)']
 
 
 BROKEN = """\

@@ -383,11 +383,11 @@ def test_respawn_and_timeouts_of_the_model_reach_the_manager_and_the_launch_file
     # the smoke test's connections: the provided end names it; the watch names its line
     line = next(n for n, text in enumerate(model.read_text().splitlines(), 1)
                 if 'from: receiver.sText' in text)
-    # in the model's installed copy (below its two lines of header): no path of this machine
+    # in the model's installed copy, at the model's own line: no path of this machine
     assert description['connections'] == [{
         'name': '/receiver/sText', 'entity': 'subscription',
         'type': 'example_msgs/msg/Text', 'from': 'receiver.sText', 'to': 'sender.sText',
-        'location': f'share/examples_system/robmosys/robmosys.yaml:{line + 2}:5'}]
+        'location': f'share/examples_system/robmosys/robmosys.yaml:{line}:5'}]
     nodes = {n.name: n for n in read_launch_file(
         out / 'launch' / 'examples_system.nodes.launch.py', out)}
     assert nodes['sender'].extra == {**LAUNCH_EXTRA, 'respawn': True}
@@ -439,8 +439,8 @@ def test_the_description_holds_what_the_conformance_watch_compares(tmp_path):
 
     def at(fragment: str, column: int) -> str:
         line = next(n for n, t in enumerate(lines, 1) if fragment in t)
-        # in the installed copy of the model, below its two lines of header
-        return f'share/handwritten_system/robmosys/robmosys.yaml:{line + 2}:{column}'
+        # in the installed copy of the model, whose lines are the model's
+        return f'share/handwritten_system/robmosys/robmosys.yaml:{line}:{column}'
     instances = {i['instance']: i for i in description['instances']}
     assert instances['echo']['location'] == at('echo: {component', 7)
     assert instances['talker']['lifecycle'] is False

@@ -45,21 +45,24 @@ SYSTEMS = ('dummy_robot_bringup', 'examples_system')
 
 
 def _bringup(built: BuiltWorkspace, system: str, env: dict, *args: str):
+    # run from the workspace, as its user runs it: the reports name its model files
     executable = built.install / system / 'lib' / system / 'bringup'
-    return background([sys.executable, str(executable), *args], env=env, stop_timeout=30)
+    return background([sys.executable, str(executable), *args], env=env, stop_timeout=30,
+                      cwd=built.root)
 
 
 def _line_of(built: BuiltWorkspace, system: str, text: str) -> str:
     """
-    Return ``robmosys.yaml:<line>:`` of the first line of a system's model holding text.
+    Return ``src/<system>/robmosys.yaml:<line>:`` of the first line of a model holding text.
 
-    In the model's installed copy, where the manager's reports point: a package holds
-    no path of the machine that built it, and an installed system has no sources.
+    The model file the user wrote, where the manager's reports point when it is
+    there (relative to the workspace, where the managers run; tests/test_report_lines.py
+    shows the installed copy named where it is not).
     """
-    model = built.share(system) / 'robmosys' / 'robmosys.yaml'
+    model = built.root / 'src' / system / 'robmosys.yaml'
     for number, line in enumerate(model.read_text().splitlines(), 1):
         if text in line:
-            return f'{model}:{number}:'
+            return f'src/{system}/robmosys.yaml:{number}:'
     raise AssertionError(f'{text!r} is not in {model}')
 
 
@@ -134,7 +137,8 @@ def test_a_steady_run_reports_no_difference(running):
         # and the one-shot check agrees
         executable = running.built.install / system / 'lib' / system / 'bringup'
         check = subprocess.run([sys.executable, str(executable), '--check'], env=running.env,
-                               capture_output=True, text=True, timeout=60)
+                               capture_output=True, text=True, timeout=60,
+                               cwd=running.built.root)
         assert check.returncode == 0, check.stdout + check.stderr
         assert check.stdout == '', check.stdout
 
@@ -360,7 +364,8 @@ def test_a_misspelt_name_outside_the_model_is_reported_with_the_near_name(
             # the one-shot check says so too, at the model's line
             executable = built.install / system / 'lib' / system / 'bringup'
             check = subprocess.run([sys.executable, str(executable), '--check'], env=env,
-                                   capture_output=True, text=True, timeout=60)
+                                   capture_output=True, text=True, timeout=60,
+                                   cwd=built.root)
             assert check.returncode == 1, check.stdout + check.stderr
             assert re.search(rf'^{re.escape(where)}\d+: error: /outside/words has no '
                              'publisher; /outside/wrods has one', check.stdout,
@@ -371,7 +376,8 @@ def test_a_misspelt_name_outside_the_model_is_reported_with_the_near_name(
                 state.reported(system, since, 'cleared', where,
                                '/outside/words has no publisher; /outside/wrods')
                 check = subprocess.run([sys.executable, str(executable), '--check'], env=env,
-                                       capture_output=True, text=True, timeout=60)
+                                       capture_output=True, text=True, timeout=60,
+                                       cwd=built.root)
                 assert check.returncode == 0, check.stdout + check.stderr
 
 
@@ -388,11 +394,12 @@ def test_the_smoke_test_fails_when_the_system_differs_from_its_model(
     script = ('import json, sys; from robmosys_runtime.tools import smoke; print(json.dumps('
               "smoke.run('examples_system', description_file=sys.argv[1], timeout=10.0)))")
     result = run_command([sys.executable, '-c', script, str(path)],
-                         env=built.env(free_domain_id()), timeout=300)
+                         env=built.env(free_domain_id()), timeout=300, cwd=built.root)
     assert result.returncode == 0, result.stdout + result.stderr
     problems = json.loads(result.stdout.splitlines()[-1])
-    # the line of the model's installed copy, in the prefix that holds it
-    where = str(built.install / 'examples_system' / greeting['location'])
+    # the line of the model file the user wrote (the installed copy's is the same line)
+    where = greeting['location'].replace('share/examples_system/robmosys/',
+                                         'src/examples_system/')
     assert problems[0] == 'the running system differs from its model:\n' + \
         f'{where}: error: parameter greeting of instance sender is ' \
         "'hi there', the model gives 'bonjour'", problems

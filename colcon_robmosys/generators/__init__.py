@@ -31,7 +31,8 @@ from colcon_robmosys.generators.usercode import (
 from colcon_robmosys.generators.writer import (
     GenerationReport, write_generated, write_outputs, write_tree)
 from colcon_robmosys.mapping.backends import backend
-from colcon_robmosys.mapping.common import INSTALLED_MODEL
+from colcon_robmosys.mapping.common import (
+    Banner, banner_of, INSTALLED_MODEL, INSTALLED_MODEL_SOURCE)
 from colcon_robmosys.mapping.component import plan_component
 from colcon_robmosys.mapping.interfaces import plan_interfaces
 from colcon_robmosys.mapping.system import plan_system
@@ -64,16 +65,21 @@ def plan_package(workspace: Workspace, package: str) -> PackageFiles:
         made = component_package(language, context, model_dir, model.location)
     else:
         made = system_package(plan_system(model, workspace), model_dir)
-    # the model, installed with the package: workspaces built on this one use it
+    # the model, installed with the package: workspaces built on this one use it, and
+    # the system manager's reports point at its lines; what says that it is generated
+    # lies beside it, so that its lines stay the model's
     text = Path(model.info.model_file).read_text(encoding='utf-8')
+    installed = InstalledModel(banner_of(model), package, text)
     return replace(made, files=made.files + (
-        FileSpec(INSTALLED_MODEL, 'common/model.yaml.jinja', InstalledModel(package, text)),))
+        FileSpec(INSTALLED_MODEL, 'common/model.yaml.jinja', installed),
+        FileSpec(INSTALLED_MODEL_SOURCE, 'common/model_source.yaml.in.jinja', installed)))
 
 
 @dataclass(frozen=True)
 class InstalledModel:
     """The model file of a package, as it installs it (share/<package>/robmosys/)."""
 
+    banner: Banner
     package: str
     text: str
 

@@ -16,10 +16,12 @@ from colcon_robmosys.model.types import (
 #: which every component runs on and every system activates with.
 RUNTIME_PACKAGE = 'robmosys_runtime'
 
-#: where a package installs the model file it is generated from, in share/<package>/
+#: where a package installs the model file it is generated from, in share/<package>/: a
+#: copy of its text, nothing added, so that a line of the copy is that line of the model
 INSTALLED_MODEL = 'robmosys/robmosys.yaml'
-#: the lines the installed copy adds above the model's text (common/model.yaml.jinja)
-INSTALLED_MODEL_HEADER_LINES = 2
+#: beside it, what says that the copy is generated and where the model file was built from
+#: (configured by CMake from this template: common/installed_model.cmake.jinja)
+INSTALLED_MODEL_SOURCE = 'robmosys/source.yaml.in'
 
 #: Every generated file, and the manifest of a generation, says this first;
 #: the writer knows its own files by it.

@@ -11,7 +11,7 @@ from typing import Any, Iterable
 
 from colcon_robmosys.mapping.backends import DEFAULT_EXECUTORS, node_start
 from colcon_robmosys.mapping.common import (
-    Banner, banner_of, INSTALLED_MODEL, INSTALLED_MODEL_HEADER_LINES, package_xml, PackageXml,
+    Banner, banner_of, INSTALLED_MODEL, package_xml, PackageXml,
     RUNTIME_PACKAGE, unique)
 from colcon_robmosys.mapping.conformance import watched_instances, WatchedInstance
 from colcon_robmosys.mapping.connections import (
@@ -246,16 +246,18 @@ def installed_location(location: str, installed: dict[str, str]) -> str:
     """
     Return a location (``path:line:column``) in the installed copy of its model file.
 
-    The copy has the model's text below a header of its own: its lines are
-    shifted. A model of an underlay was read from its installed copy already.
-    A location in no such file is returned as it is.
+    The copy is the model's text as it is: a line and column of the model file
+    are those of the copy (the system manager names the model file itself where
+    it is there, robmosys_runtime.tools.locations). A model of an underlay was
+    read from its installed copy already. A location in no such file is
+    returned as it is.
     """
     parts = _split_location(location)
     if parts is None:
         return location
     path, line, column = parts
     if path in installed:
-        return f'{installed[path]}:{int(line) + INSTALLED_MODEL_HEADER_LINES}:{column}'
+        return f'{installed[path]}:{line}:{column}'
     if '/share/' in path:
         return f"{path[path.rindex('/share/') + 1:]}:{line}:{column}"
     return location

@@ -114,11 +114,16 @@ class RobmosysBuildTask(TaskExtensionPoint):
         # files are built and installed where they live, next to the model,
         # so that compilers, debuggers, linters and symlinks point there
         args.path = str(source_dir)
+        # where the model file is: the package installs beside the copy of its model
+        # where it was built from, so that the system manager's reports name the
+        # file the user wrote (common/installed_model.cmake.jinja)
+        cmake_args = [f'-DROBMOSYS_MODEL_FILE={os.path.abspath(model_file)}']
         if pkg.type == 'robmosys.component':
             # only components have files of the user's: CMake warns of a variable
             # that a package does not use
-            args.cmake_args = list(getattr(args, 'cmake_args', None) or []) + [
-                f'-DROBMOSYS_SOURCE_DIR={os.path.abspath(Path(model_file).parent)}']
+            cmake_args.append(
+                f'-DROBMOSYS_SOURCE_DIR={os.path.abspath(Path(model_file).parent)}')
+        args.cmake_args = list(getattr(args, 'cmake_args', None) or []) + cmake_args
         extension = AmentCmakeBuildTask()
         extension.set_context(context=self.context)
         return await extension.build()

@@ -24,9 +24,11 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
+import re
 import sys
-from typing import Any, Dict, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, NoReturn, Optional, Sequence, Tuple
 
 from ament_index_python.packages import get_package_share_directory
 from robmosys_runtime.hosting.output import say
@@ -50,6 +52,9 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     try:
         description, params_file = apply_arguments(description, params_file, args)
     except ArgumentError as error:
+        # an operator's file: the line of each mistake first, as check_params prints it
+        for line in getattr(error, 'lines', ()):
+            print(line, file=sys.stderr, flush=True)
         say('error', f'{error}; nothing was started')
         return 2
     if args.host:
@@ -59,25 +64,67 @@ def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     return run_manager(description, args, params_file)
 
 
+class _Parser(argparse.ArgumentParser):
+    """bringup's options: a bad one is one line, as a bad value of the launch arguments is."""
+
+    def error(self, message: str) -> NoReturn:
+        """Say what is wrong in one line (--help lists the options); exit 2."""
+        # argparse says 'argument --timeout: 0: ...': the option and its value, as given
+        said = re.sub(r'^argument (\S+): ', r'\1 ', message)
+        say('error', f'{said}; nothing was started')
+        raise SystemExit(2)
+
+
+#: the most seconds (or periods) an option takes: rclpy's timers and Python's waits
+#: hold about 292 years (int64 nanoseconds, threading.TIMEOUT_MAX); 1e9 s is 31 years
+MOST = 1e9
+
+
+def number(least: float = 0.0, *, above: bool = False,
+           off: bool = False) -> Callable[[str], float]:
+    """
+    Return the type of a numeric option: a finite number from least (or above it) to MOST.
+
+    :param off: 0 turns what the option sets off: say so when the value is below
+    """
+    def read(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        if math.isnan(value):
+            raise argparse.ArgumentTypeError(f'{text}: is not a number')
+        if value > MOST:
+            raise argparse.ArgumentTypeError(f'{text}: is too large (at most 1e9)')
+        if above and value <= least:
+            raise argparse.ArgumentTypeError(f'{text}: is not above {least:g}')
+        if value < least:
+            raise argparse.ArgumentTypeError(
+                f"{text}: is below {least:g}{' (0: off)' if off else ''}")
+        return value
+    return read
+
+
 def options(description_file: str) -> argparse.ArgumentParser:
-    """Return the parser of bringup's options."""
-    parser = argparse.ArgumentParser(
+    """Return the parser of bringup's options; each numeric one refuses what is out of range."""
+    parser = _Parser(
         prog='bringup', description='Start the system, bring it up, bring it down on Ctrl-C.')
-    parser.add_argument('--timeout', type=float, default=30.0,
+    parser.add_argument('--timeout', type=number(above=True), default=30.0,
                         help='seconds for each lifecycle transition of an instance, where '
                         'the model does not set it')
-    parser.add_argument('--start-timeout', type=float, default=60.0,
+    parser.add_argument('--start-timeout', type=number(above=True), default=60.0,
                         help='seconds for the process of each instance to offer its '
                         'lifecycle services')
     parser.add_argument('--exit-on-failure', action='store_true',
                         help='bring the system down and exit 1 if an instance fails to come '
                         'up (default: stay up and report)')
-    parser.add_argument('--heartbeat', type=float, default=0.0, metavar='SECONDS',
+    parser.add_argument('--heartbeat', type=number(off=True), default=0.0, metavar='SECONDS',
                         help='ask every managed instance for its state this often, and '
                         'report one that does not answer or is no longer active (0: off)')
-    parser.add_argument('--respawn-delay', type=float, default=1.0, metavar='SECONDS',
+    parser.add_argument('--respawn-delay', type=number(), default=1.0, metavar='SECONDS',
                         help='seconds before an instance marked respawn is started again')
-    parser.add_argument('--diagnostics-period', type=float, default=1.0, metavar='SECONDS',
+    parser.add_argument('--diagnostics-period', type=number(above=True), default=1.0,
+                        metavar='SECONDS',
                         help='seconds between two publications on /diagnostics')
     parser.add_argument('--attach', action='store_true',
                         help='start no instance (ros2 launch starts them): only bring the '
@@ -98,17 +145,17 @@ def options(description_file: str) -> argparse.ArgumentParser:
                         'default: processes: shared)')
     layout.add_argument('--per-instance', dest='processes', action='store_false',
                         help='run every instance in a process of its own')
-    parser.add_argument('--check-period', type=float, default=1.0, metavar='SECONDS',
+    parser.add_argument('--check-period', type=number(off=True), default=1.0, metavar='SECONDS',
                         help='compare the running system with its model this often, and '
                         'report each difference when it appears and when it clears (0: off)')
-    parser.add_argument('--silence', type=float, default=5.0, metavar='PERIODS',
+    parser.add_argument('--silence', type=number(above=True), default=5.0, metavar='PERIODS',
                         help='report a push port of a periodic activity that sent nothing '
                         'for this many periods of its activity while its instance is active')
     parser.add_argument('--check', action='store_true',
                         help='start nothing: compare the system running now with its model '
                         'once, print each difference at its line of the model, exit 1 if '
                         'there is one')
-    parser.add_argument('--check-wait', type=float, default=10.0, metavar='SECONDS',
+    parser.add_argument('--check-wait', type=number(), default=10.0, metavar='SECONDS',
                         help='with --check: seconds to wait for the nodes of the model, and '
                         'at most to listen for silent ports')
     # the launch arguments of the system's launch files, with the same meaning
@@ -131,13 +178,27 @@ def apply_arguments(description: Dict[str, Any], params_file: str,
     With --namespace, every name of the description is moved, and the moved
     description is written to a file of its own for the processes that read
     it (``args.description``); the parameter file is the system's, or one
-    made for --namespace, --use-sim-time and --params-file.
+    made for --namespace, --use-sim-time and --params-file. The operator's
+    file is checked first, as check_params checks it: its warnings are
+    printed; its errors raise.
+
+    :raises ArgumentError: an argument that cannot be applied (a
+      :class:`~robmosys_runtime.tools.paramcheck.RefusedFile` with the lines
+      of the operator's file's errors)
     """
     where = normalized_namespace(args.namespace)
     level = log_level(args.log_level)
     operator = os.path.expanduser(args.params_file)
     if operator and not os.path.isfile(operator):
         raise ArgumentError(f'--params-file {args.params_file!r}: no such file')
+    if operator:
+        # checked as check_params checks it, before anything starts: a value a node
+        # refuses ended that node in a traceback (imported here: it needs yaml, which
+        # a bring-up without a file does not, issue 28)
+        from robmosys_runtime.tools.paramcheck import check_operator_file
+        for line in check_operator_file(description, operator, where,
+                                        argument='--params-file'):
+            print(line, file=sys.stderr, flush=True)
     description = moved_description(description, where)
     simulated = sim_time(args.use_sim_time)
     if any_given(where, simulated, operator):

@@ -9,7 +9,8 @@ action the same things: its namespace and ROS names through :meth:`moved`,
 (``processes: shared``) is given ``description`` and ``params_file``, files
 whose names and values are moved and set as the nodes' are. The arguments mean what bringup's
 options mean (:mod:`robmosys_runtime.tools.arguments`); launch and launch_ros are
-imported here only, by launch files.
+imported here only, by launch files. Its ``check`` action, before every process,
+refuses what bringup refuses (:func:`check_arguments`).
 """
 
 from __future__ import annotations
@@ -18,19 +19,21 @@ import atexit
 import json
 import os
 import shutil
+import sys
 import tempfile
 from typing import Any, Dict, List, Optional, Text, Tuple
 
 from ament_index_python.packages import get_package_prefix, get_package_share_directory
-from launch.actions import DeclareLaunchArgument
+from launch.actions import DeclareLaunchArgument, OpaqueFunction
 from launch.launch_context import LaunchContext
 from launch.substitution import Substitution
 from launch.substitutions import LaunchConfiguration, SubstitutionFailure
 from robmosys_runtime.hosting.processes import CPP_GROUP
 from robmosys_runtime.hosting.told import told_file
 from robmosys_runtime.tools.arguments import (
-    ARGUMENTS, LOG_LEVELS, moved, moved_description, normalized_namespace, parameters_file,
-    sim_time, temporary)
+    ArgumentError, ARGUMENTS, LOG_LEVELS, moved, moved_description, normalized_namespace,
+    parameters_file, sim_time, temporary)
+from robmosys_runtime.tools.paramcheck import check_operator_file
 
 
 def _argument(context: LaunchContext, name: str) -> str:
@@ -122,6 +125,43 @@ class SystemDescription(Substitution):
         return _DESCRIPTIONS[key]
 
 
+#: (package, namespace, operator's file) -> checked (its warnings said)
+_CHECKED: Dict[Tuple[str, str, str], bool] = {}
+
+
+def check_arguments(context: LaunchContext, package: str) -> List[Any]:
+    """
+    Refuse the launch arguments bringup would refuse, before any process starts.
+
+    A namespace or use_sim_time that is no such value (launch itself holds
+    log_level to its choices), an operator's file that is not there or does
+    not fit the system (checked as check_params checks it: the line of each
+    problem is printed first, bare, for editors).
+    Launch cannot exit 2 as bringup does: the error ends the launch before it
+    started anything, and ``ros2 launch`` prints it as one line (``Caught
+    exception in launch ...: params_file 'site.yaml' does not fit the system
+    ...; nothing was started``) and exits 1.
+
+    :raises ArgumentError: what is wrong, in one line
+    """
+    try:
+        where = namespace(context)
+        sim_time(_argument(context, 'use_sim_time'))
+        operator = os.path.expanduser(_argument(context, 'params_file').strip())
+        key = (package, where, operator)
+        if operator and key not in _CHECKED:
+            if not os.path.isfile(operator):
+                raise ArgumentError(f'params_file {operator!r}: no such file')
+            for line in check_operator_file(_description(package), operator, where):
+                print(line, file=sys.stderr, flush=True)
+            _CHECKED[key] = True
+    except ArgumentError as error:
+        for line in getattr(error, 'lines', ()):
+            print(line, file=sys.stderr, flush=True)
+        raise ArgumentError(f'{error}; nothing was started') from None
+    return []
+
+
 class SystemParameters(Substitution):
     """The parameter file every node of the system reads, for the arguments given."""
 
@@ -135,6 +175,8 @@ class SystemParameters(Substitution):
 
     def perform(self, context: LaunchContext) -> Text:
         """Return the system's cfg/params.yaml, or the file made for the arguments."""
+        # a launch file without SystemArguments.check: refused all the same
+        check_arguments(context, self.package)
         share = get_package_share_directory(self.package)
         description = _description(self.package)
         where = namespace(context)
@@ -159,6 +201,9 @@ class SystemArguments:
                 name, default_value=default, description=description,
                 **({'choices': list(LOG_LEVELS)} if name == 'log_level' else {}))
             for name, (default, description) in ARGUMENTS.items()]
+        #: what checks the arguments before any process starts (check_arguments):
+        #: the first action after the declarations
+        self.check = OpaqueFunction(function=check_arguments, args=[package])
         #: the parameter file of every node
         self.params_file = SystemParameters(package)
         #: the ``parameters`` of every node

@@ -8,7 +8,7 @@ The tools around a system that are not its manager, each usable on its own.
   ``ros2 launch`` and ``bringup``;
 - :mod:`.paramfile` and :mod:`.paramcheck`: an operator's parameter file, read
   as rcl reads it and checked against the system offline (``check_params``);
-- :mod:`.locations`: the installed model files the reports point at;
+- :mod:`.locations`: the model files the reports point at (the user's, or its copy);
 - :mod:`.smoke`: the smoke test a system package installs.
 
 May import: the component side (the modules at the top of robmosys_runtime).

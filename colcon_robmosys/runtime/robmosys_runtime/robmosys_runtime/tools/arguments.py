@@ -177,14 +177,32 @@ def _entries(path: str) -> List[Tuple[str, Dict[str, Any]]]:
     if not isinstance(document, dict):
         raise ArgumentError(f'params_file {path!r}: not a ROS 2 parameter file '
                             '(node name -> ros__parameters)')
-    entries = []
-    for key, entry in document.items():
-        values = entry.get('ros__parameters') if isinstance(entry, dict) else None
-        if not isinstance(values, dict):
-            raise ArgumentError(f'params_file {path!r}: entry {key!r} has no '
-                                'ros__parameters mapping')
-        entries.append((str(key), _flattened(values)))
+    entries: List[Tuple[str, Dict[str, Any]]] = []
+    _node_entries(path, document, '', entries)
     return entries
+
+
+def _node_entries(path: str, tree: Dict[Any, Any], namespace: str,
+                  entries: List[Tuple[str, Dict[str, Any]]]) -> None:
+    """
+    Add the entries of a file's nodes: the keys above ros__parameters make the name.
+
+    ``robot2: {publisher: {ros__parameters: ...}}`` is ``robot2/publisher``, as
+    rcl reads it (robmosys_runtime.tools.paramfile says the same, with lines).
+    """
+    for key, entry in tree.items():
+        name = f"{namespace.rstrip('/')}/{key}" if namespace else str(key)
+        # below a node's name: its parameters, and the nodes whose names go on
+        if not isinstance(entry, dict) or not entry or any(
+                not isinstance(value, dict) and not (k == 'ros__parameters' and value is None)
+                for k, value in entry.items()):
+            raise ArgumentError(f'params_file {path!r}: entry {name!r} has no '
+                                'ros__parameters mapping')
+        if 'ros__parameters' in entry:
+            entries.append((name, _flattened(entry['ros__parameters'])))
+        nested = {k: v for k, v in entry.items() if k != 'ros__parameters'}
+        if nested:
+            _node_entries(path, nested, name, entries)
 
 
 def node_values(fqns: Iterable[str], system_file: str, namespace: str = '',

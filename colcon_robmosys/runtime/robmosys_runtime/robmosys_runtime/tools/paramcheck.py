@@ -27,6 +27,7 @@ import sys
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
 
 from robmosys_runtime.rules import ParameterRule, rule_problem
+from robmosys_runtime.tools.arguments import ArgumentError
 from robmosys_runtime.tools.paramfile import FileValue, NodeEntry, Problem, read_text
 
 #: how many names a message lists at most
@@ -255,10 +256,52 @@ def check_files(description: Dict[str, Any], paths: Sequence[str], *, namespace:
             found.append((path, Problem(0, 0, f'cannot read it: {error.strerror}')))
             continue
         except UnicodeDecodeError as error:
-            found.append((path, Problem(0, 0, f'not a text in UTF-8 (byte {error.start})')))
+            found.append((path, _not_utf8(error)))
             continue
         found += [(path, p) for p in system.check(text, running=running)]
     return found
+
+
+def _not_utf8(error: UnicodeDecodeError) -> Problem:
+    """Return where the first byte that is not UTF-8 stands: its line and column."""
+    before = error.object[:error.start]
+    start = before.rfind(b'\n') + 1
+    column = len(before[start:].decode('utf-8')) + 1
+    return Problem(before.count(b'\n') + 1, column,
+                   f'not a text in UTF-8 (byte 0x{error.object[error.start]:02x})')
+
+
+class RefusedFile(ArgumentError):
+    """An operator's parameter file with errors: the message, and the line of each problem."""
+
+    def __init__(self, message: str, lines: List[str]) -> None:
+        super().__init__(message)
+        #: the compiler-style line of each problem, as check_params prints them
+        self.lines = lines
+
+
+def check_operator_file(description: Dict[str, Any], path: str, namespace: str = '', *,
+                        argument: str = 'params_file') -> List[str]:
+    """
+    Check an operator's parameter file before a system starts with it; return its warnings.
+
+    What bringup (``--params-file``) and the launch files (``params_file:=``) run
+    before anything starts: the check of ``check_params``, with its lines.
+
+    :param namespace: the namespace the system is started in
+    :param argument: how the caller names the file's option, for the message
+    :returns: the lines of its warnings (a value the nodes ignore)
+    :raises RefusedFile: when it has an error: the lines of its problems, and a
+      message of one line
+    """
+    found = check_files(description, [path], namespace=namespace)
+    lines = [line(p, problem) for p, problem in found]
+    errors = sum(p.severity == 'error' for _, p in found)
+    if errors:
+        raise RefusedFile(
+            f"{argument} {path!r} does not fit the system {description['package']} "
+            f"({errors} error{'s' if errors > 1 else ''})", lines)
+    return lines
 
 
 def line(path: str, problem: Problem) -> str:

@@ -99,3 +99,16 @@ def test_a_file_that_is_no_parameter_file_is_refused_with_its_name(tmp_path):
         node_values(['/laser'], system, operator_file=str(broken))
     with pytest.raises(ArgumentError, match='No such file'):
         node_values(['/laser'], system, operator_file=str(tmp_path / 'none.yaml'))
+
+
+def test_the_keys_above_ros_parameters_make_the_nodes_name(tmp_path):
+    # as rcl reads a file: robot2: {publisher: {ros__parameters}} is /robot2/publisher
+    system = _write(tmp_path / 'params.yaml', {'/**': {'ros__parameters': {}}})
+    operator = tmp_path / 'mine.yaml'
+    operator.write_text('robot2:\n  publisher:\n    ros__parameters: {indoor: false}\n'
+                        '  ros__parameters: {rate: 2.0}\n'
+                        '/robot1/:\n  publisher:\n    ros__parameters:\n')
+    values = node_values(['/robot1/publisher', '/robot2/publisher', '/robot2'], system,
+                         operator_file=str(operator))
+    assert values == {'/robot1/publisher': {}, '/robot2/publisher': {'indoor': False},
+                      '/robot2': {'rate': 2.0}}
