@@ -189,13 +189,17 @@ def _fqn(site: Site, instance: str) -> str:
 
 
 def _location(site: Site, what: str) -> str:
-    """Return the model's line of an instance or of the connection (file:line)."""
+    """Return how a report names the model's place of an instance or of the connection.
+
+    The file is the user's model, or its installed copy (docs/runtime.md): both
+    have the same lines.
+    """
     if what == 'connection':
         location = site.description['connections'][0]['location']
     else:
         location = next(i['location'] for i in site.description['instances']
                         if i['instance'] == what)
-    return location.rsplit(':', 1)[0].split('share/', 1)[-1]
+    return 'robmosys.yaml:' + location.split(':', 1)[1] + ':'
 
 
 def _reported(manager: Background, mark: int, location: str, text: str) -> bool:
