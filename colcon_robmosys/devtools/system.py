@@ -59,7 +59,9 @@ def answered(client: Any, request: Any, spun: Any, timeout: float = 20.0,
 
 #: transition label -> the state a node is in once it went through it
 GOAL_STATES = {'configure': 'inactive', 'activate': 'active', 'deactivate': 'inactive',
-               'cleanup': 'unconfigured', 'shutdown': 'finalized'}
+               'cleanup': 'unconfigured', 'shutdown': 'finalized',
+               'unconfigured_shutdown': 'finalized', 'inactive_shutdown': 'finalized',
+               'active_shutdown': 'finalized'}
 
 
 class LifecycleDriver:

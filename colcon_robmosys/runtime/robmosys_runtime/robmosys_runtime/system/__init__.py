@@ -9,6 +9,8 @@ The system manager: a system started, brought up, served and brought down.
   ``/diagnostics``;
 - :mod:`.activation`, :mod:`.levels`, :mod:`.lifecycle_calls`: the managed
   instances configured and activated in the model's order, and brought down;
+- :mod:`.drift`: instances seen out of ``active`` outside the manager's
+  transitions (their transition events, the heartbeat), and back;
 - :mod:`.heartbeat`: every managed instance asked its state, in step;
 - :mod:`.launching`: what the launch files of a system give every node.
 

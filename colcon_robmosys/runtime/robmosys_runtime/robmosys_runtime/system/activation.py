@@ -66,6 +66,8 @@ class SystemActivation:
         self._changed = threading.Condition()
         self._stop = threading.Event()
         self._threads: List[threading.Thread] = []
+        #: instance -> the thread that takes it through its transitions, if any
+        self._driving: Dict[str, threading.Thread] = {}
         # instances whose process told their state: their clients are made
         # once the bring-up threads have ended (see _prepare)
         self._unprepared: List[str] = []
@@ -93,14 +95,15 @@ class SystemActivation:
         """
         self._stop.clear()
         names = list(self._instances) if names is None else list(names)
+        threads = {name: threading.Thread(target=self._bring_up, args=(name,), daemon=True,
+                                          name=f'activate {name}') for name in names}
         with self._changed:
             self._threads = [t for t in self._threads if t.is_alive()]
             for name in names:
                 self._failed.pop(name, None)
                 self._states.pop(name, None)
-        for name in names:
-            thread = threading.Thread(target=self._bring_up, args=(name,), daemon=True,
-                                      name=f'activate {name}')
+            self._driving.update(threads)
+        for thread in threads.values():
             thread.start()
             self._threads.append(thread)
 
@@ -125,14 +128,19 @@ class SystemActivation:
         with self._changed:
             return dict(self._failed)
 
+    def driving(self, name: str) -> bool:
+        """Tell whether this activation takes an instance through its transitions now."""
+        thread = self._driving.get(name)  # one operation on a dict: atomic
+        return thread is not None and thread.is_alive()
+
     def discovering(self, name: str) -> bool:
         """Tell whether an instance's get_state is still being discovered (see probe)."""
         return self._calls.discovering(name)
 
     def probe(self, name: str, timeout: float) -> Optional[str]:
-        """Return the state an instance tells within timeout, or None (a heartbeat)."""
+        """Return the state an instance tells within timeout, or None; failed ones too."""
         try:
-            return self._calls.get_state(name, timeout=timeout)
+            return self._calls.get_state(name, timeout=timeout, failed_too=True)
         except (Failed, Stopped):
             return None
 
@@ -171,13 +179,31 @@ class SystemActivation:
         if preparer is not None:
             preparer.join(timeout)
 
-    def instance_failed(self, name: str, why: str) -> None:
-        """Report that an instance failed outside its transitions (its process died)."""
+    def instance_failed(self, name: str, why: str, report: bool = True) -> None:
+        """
+        Take an instance that failed outside its transitions (its process died, it left).
+
+        :param report: report it, with what it holds back, unless it failed
+            before; if not, the caller reports it, and why replaces the why of
+            a failure before (the state it is in now)
+        """
         with self._changed:
             known = name in self._failed
             self._states.pop(name, None)
-        if not known:
+            if not report and not self._stop.is_set():
+                self._failed[name] = why
+                self._changed.notify_all()
+        if report and not known:
             self._fail(name, why)
+
+    def recovered(self, name: str) -> List[str]:
+        """Take an instance seen active again, its failure gone; return what it held back."""
+        with self._changed:
+            self._failed.pop(name, None)
+            self._states[name] = 'active'
+            self._changed.notify_all()
+            return [n for n in self._waiting_for(name) if self._states.get(n) != 'active'
+                    and n not in self._failed and not self._blockers(n)]
 
     def bring_down(self, timeout: float = 10.0) -> List[str]:
         """
@@ -201,6 +227,7 @@ class SystemActivation:
             threads = [threading.Thread(target=self._bring_down_one,
                                         args=(name, timeout, done), daemon=True,
                                         name=f'bring down {name}') for name in level]
+            self._driving.update(zip(level, threads))
             for thread in threads:
                 thread.start()
             for thread in threads:

@@ -20,6 +20,7 @@ from typing import AbstractSet, Any, Callable, Dict, List, Optional, Set
 
 from robmosys_runtime.hosting.output import say
 from robmosys_runtime.system.activation import SystemActivation
+from robmosys_runtime.system.drift import Drift
 
 #: heartbeats in a row without an answer before an instance is reported
 MISSED = 3
@@ -35,21 +36,26 @@ class Heartbeat:
       else than this manager (its host's ``bringup``, a launch, or the
       manager's own respawn): brought back to the state of the system, with
       what it holds back;
-    - any other state than ``active``: reported as failed. One of another
-      host stays asked: once it went silent (its process ended) and comes back
-      ``unconfigured``, it is brought back too (a host's ``bringup`` stops its
-      instances when it is killed, and they may pass through ``finalized``).
+    - any other state than ``active``: reported as failed (:class:`.drift.Drift`,
+      which the transition events of the instances tell sooner). A failed
+      instance stays asked: seen ``active`` again, whatever brought it back,
+      it is no longer failed; one of another host that went silent (its
+      process ended) and comes back ``unconfigured`` is brought back too (a
+      host's ``bringup`` stops its instances when it is killed, and they may
+      pass through ``finalized``).
 
     :param silent: instance -> why it is unknown, shared with the manager's reports
     :param instances: instance -> its entry of the system's description
     :param here: the instances whose processes this manager started
     :param up: whether the system is meant to be up now
+    :param drift: what takes the states told outside the manager's transitions
     """
 
     def __init__(self, activation: SystemActivation, period: float, silent: Dict[str, str],
                  instances: Dict[str, Dict[str, Any]], here: Set[str],
-                 up: Callable[[], bool]) -> None:
+                 up: Callable[[], bool], drift: Optional[Drift] = None) -> None:
         self._activation = activation
+        self._drift = drift or Drift(activation, up)
         self.period = period
         self._silent = silent
         self._instances = instances
@@ -74,49 +80,44 @@ class Heartbeat:
                     return
                 if self._activation.running() or not self._up():
                     continue
-                states = self._activation.states()
-                names = [n for n, s in states.items()
-                         if s != 'failed' or n not in self._here]
+                names = list(self._activation.states())
                 answers = dict(zip(names, pool.map(
                     lambda name: self._activation.probe(name, timeout=self.period), names)))
-                if not stopping.is_set():
-                    self.heard(answers, {n for n in names if states[n] == 'failed'})
+                # failed since it was asked (its transition event came first) or not
+                failed = {n for n, s in self._activation.states().items() if s == 'failed'}
+                if not stopping.is_set() and not self._activation.running():
+                    self.heard(answers, failed)
 
     def heard(self, answers: Dict[str, Optional[str]],
               failed: AbstractSet[str] = frozenset()) -> None:
         """Take the answers of one heartbeat (None: no answer) of instances, failed ones of it."""
         back: List[str] = []
         for name, answer in sorted(answers.items()):
-            if name in failed:
-                if answer is None:
-                    self._gone.add(name)
-                elif answer == 'unconfigured' and name in self._gone:
-                    say('info', f'instance {name} came back (heartbeat): bringing it up')
-                    back.append(name)
-                continue
             if answer is None:
-                if self._activation.discovering(name):
-                    # told active by its process; its service not discovered yet
-                    continue
-                self._missed[name] = self._missed.get(name, 0) + 1
-                if self._missed[name] == MISSED and name not in self._silent:
-                    why = f'no answer for {MISSED * self.period:g} s'
-                    self._silent[name] = why
-                    say('error', f'instance {name} does not answer (heartbeat): {why}')
+                if name in failed:
+                    self._gone.add(name)
+                elif not self._activation.discovering(name):
+                    # (one told active by its process, whose service is still
+                    # being discovered, has no answer to miss)
+                    self._missed[name] = self._missed.get(name, 0) + 1
+                    if self._missed[name] == MISSED and name not in self._silent:
+                        why = f'no answer for {MISSED * self.period:g} s'
+                        self._silent[name] = why
+                        say('error', f'instance {name} does not answer (heartbeat): {why}')
                 continue
             self._missed[name] = 0
-            if answer == 'unconfigured' and self.restartable(name):
+            if self._silent.pop(name, None) is not None and answer == 'active':
+                say('info', f'instance {name} answers again (heartbeat)')
+            if answer == 'unconfigured' and (
+                    name in self._gone and name not in self._here if name in failed
+                    else self.restartable(name)):
                 # started again where it runs: bring it back
                 say('info', f'instance {name} came back (heartbeat): bringing it up')
                 back.append(name)
-            elif answer != 'active':
-                self._silent[name] = f'it is {answer}, not active'
-                say('error', f'instance {name} is {answer}, not active (heartbeat)')
-                self._activation.instance_failed(name, f'is {answer}, not active')
-            elif self._silent.pop(name, None) is not None:
-                say('info', f'instance {name} answers again (heartbeat)')
+            else:
+                # left active, or active again (its failure gone, whatever repaired it)
+                self._drift.seen(name, answer, 'heartbeat')
         for name in back:
-            self._silent.pop(name, None)
             self._gone.discard(name)
         if back:
             # one bring-up for all: two would take a shared successor up twice

@@ -74,23 +74,27 @@ class LifecycleCalls:
         #: instance -> when its get_state client was made, until its service is seen
         self._unseen: Dict[str, float] = {}
 
-    def call(self, client: Any, request: Any, wait: float) -> Any:
+    def call(self, client: Any, request: Any, wait: float, failed_too: bool = False) -> Any:
         """Call a service; return its answer, or None if none came within wait seconds."""
         answered = threading.Event()
         future = client.call_async(request)
         future.add_done_callback(lambda _: answered.set())
-        if self.wait_answer(answered, client, future, wait):
+        if self.wait_answer(answered, client, future, wait, failed_too):
             return future.result()
         client.remove_pending_request(future)
         return None
 
     def wait_answer(self, answered: threading.Event, client: Any, future: Any,
-                    wait: float) -> bool:
-        """Wait at most wait seconds for the answer of a call; return whether it came."""
+                    wait: float, failed_too: bool = False) -> bool:
+        """
+        Wait at most wait seconds for the answer of a call; return whether it came.
+
+        :param failed_too: wait even if the instance failed (else: :class:`Stopped`)
+        """
         end = time.monotonic() + wait
         while not answered.wait(max(0.0, min(0.1, end - time.monotonic()))):
             if self._stop.is_set() or not self._node.context.ok() or \
-                    self._gone(client):
+                    (not failed_too and self._gone(client)):
                 client.remove_pending_request(future)
                 raise Stopped()
             if time.monotonic() >= end:
@@ -137,7 +141,7 @@ class LifecycleCalls:
                 made is not None and time.monotonic() - made < self._start_timeout)
 
     def client(self, name: str, srv_type: Any, service: str,
-               timeout: Optional[float] = None) -> Any:
+               timeout: Optional[float] = None, failed_too: bool = False) -> Any:
         """Return the client of a service of an instance, once the instance offers it."""
         client = self._client(name, srv_type, service)
         timeout = self._start_timeout if timeout is None else timeout
@@ -145,7 +149,8 @@ class LifecycleCalls:
         # not wait_for_service(): it sleeps in steps of 0.25 s, which every
         # instance would pay on its way up
         while not client.service_is_ready():
-            if self._stop.wait(0.02) or not self._node.context.ok() or self._failed(name):
+            if self._stop.wait(0.02) or not self._node.context.ok() or \
+                    (not failed_too and self._failed(name)):
                 raise Stopped()
             if time.monotonic() > deadline:
                 absence = self._absence(name, service)
@@ -177,9 +182,14 @@ class LifecycleCalls:
         """Return the seconds each transition of an instance may take."""
         return self._timeouts.get(name, self._timeout)
 
-    def get_state(self, name: str, timeout: Optional[float] = None) -> Optional[str]:
-        """Return the state of an instance; None if it does not answer within timeout."""
-        client = self.client(name, GetState, 'get_state', timeout)
+    def get_state(self, name: str, timeout: Optional[float] = None,
+                  failed_too: bool = False) -> Optional[str]:
+        """
+        Return the state of an instance; None if it does not answer within timeout.
+
+        :param failed_too: ask even an instance that failed (see :meth:`wait_answer`)
+        """
+        client = self.client(name, GetState, 'get_state', timeout, failed_too)
         own = self.timeout_of(name)
         deadline = time.monotonic() + (own if timeout is None else timeout)
         # An answer is lost when the instance got the request before it matched
@@ -190,7 +200,7 @@ class LifecycleCalls:
         attempt = FIRST_ATTEMPT
         while True:
             answer = self.call(client, GetState.Request(),
-                               min(attempt, max(0.0, deadline - time.monotonic())))
+                               min(attempt, max(0.0, deadline - time.monotonic())), failed_too)
             if answer is not None:
                 return str(answer.current_state.label)
             if time.monotonic() >= deadline:

@@ -27,6 +27,7 @@ from robmosys_runtime.hosting.processes import plan_processes, shared_python
 from robmosys_runtime.hosting.reports import GRACE, Reports
 from robmosys_runtime.hosting.supervision import Processes
 from robmosys_runtime.system.activation import SystemActivation
+from robmosys_runtime.system.drift import Drift
 from robmosys_runtime.system.heartbeat import Heartbeat
 from robmosys_runtime.system.levels import report
 from robmosys_runtime.watch.watcher import Watch, watch_diagnostics
@@ -103,10 +104,12 @@ class Manager:
     active), ``~/bring_down`` (deactivate, then clean up, those that came last
     first) and ``~/report`` (the state of every instance; success when all
     managed ones are active). The state of each instance is published on
-    ``/diagnostics``, one status per instance. With a heartbeat, a managed
-    instance that no longer answers, or left the state the system is in, is
-    reported; an instance marked ``respawn`` is started again when its
-    process ends, and brought back to the state of the system.
+    ``/diagnostics``, one status per instance. A managed instance that left
+    the state the system is in is reported as its transition events tell
+    (:class:`~robmosys_runtime.system.drift.Drift`), and no longer once it is
+    back; with a heartbeat, one that no longer answers too. An instance
+    marked ``respawn`` is started again when its process ends, and brought
+    back to the state of the system.
 
     :param processes: the processes of this host, if started already
     :param told: the states the shared process told, if it told them before
@@ -150,9 +153,10 @@ class Manager:
         #: started already, if given: see :func:`start_processes`
         self.processes = processes or Processes(self._exited)
         self.processes.on_exit = self._exited
+        self.drift = Drift(self.activation, lambda: self.up and not self.stopping.is_set())
         if args.heartbeat > 0:
             heartbeat = Heartbeat(self.activation, args.heartbeat, self._silent, self.instances,
-                                  set(self._group_of), lambda: self.up)
+                                  set(self._group_of), lambda: self.up, self.drift)
             threading.Thread(target=heartbeat.run, args=(self.stopping,), daemon=True,
                              name='heartbeat').start()
         #: the conformance watch, once the first bring-up is over (see _watch)
@@ -176,25 +180,42 @@ class Manager:
                 self.processes.start(group, args)
         self.processes.watch()
         self.activation.start()
+        threading.Thread(target=self._follow, daemon=True, name='transition events').start()
         if getattr(self._args, 'check_period', 0.0) > 0:
             threading.Thread(target=self._watch, daemon=True, name='watch').start()
+
+    def _brought_up(self) -> bool:
+        """
+        Wait until the first bring-up is over; return False if the manager stops first.
+
+        The watch and the subscriptions to the instances' transition events
+        are made then, not before: entities made while the instances start
+        are discovered by each of their processes, and made a system of 20
+        instances come up a fifth slower (issue 28).
+        """
+        while self.activation.running():
+            if self.stopping.wait(0.05):
+                return False
+        return True
+
+    def _follow(self) -> None:
+        """Follow the transition events of the managed instances, once they are up."""
+        if self.managed and self._brought_up():
+            self.drift.follow(self.node, self.managed, self.stopping)
 
     def _watch(self) -> None:
         """
         Make the conformance watch once the bring-up is over, and run it.
 
-        Not before: its node and its subscriptions, made while the instances
-        start, are discovered by each of their processes, and made a system
-        of 20 instances come up a fifth slower (issue 28). Until it is made,
-        ``~/conformance`` answers that the system was not compared yet.
+        Until it is made, ``~/conformance`` answers that the system was not compared yet.
         """
-        while self.activation.running():
-            if self.stopping.wait(0.05):
-                return
+        if not self._brought_up():
+            return
         watch = Watch(self.node, self.description, period=self._args.check_period,
                       silence=self._args.silence)
         self.watch = watch
-        watch.run(self.stopping, self.states, lambda: self.up and not self.activation.running())
+        watch.run(self.stopping, lambda: self.drift.states_for_watch(self.states()),
+                  lambda: self.up and not self.activation.running())
 
     # what operators see
 

@@ -6,6 +6,7 @@ The conformance watch: the running system held to its model.
 - :mod:`.conformance`: the model against what runs, without rclpy: what
   differs, at which line of the model;
 - :mod:`.graph`: what the ROS graph shows of the model's names;
+- :mod:`.states`: the lifecycle states nodes tell on their transition events;
 - :mod:`.watcher`: the watch of the system manager, every check period;
 - :mod:`.check`: ``bringup --check``, the running system compared once.
 

@@ -5,18 +5,20 @@
 import threading
 import time
 
-from robmosys_runtime.system import heartbeat
+from conftest import wait_until
+
+from robmosys_runtime.system import drift, heartbeat
 from robmosys_runtime.system.heartbeat import Heartbeat
 
 
 class Instances:
     """A system's activation as the heartbeat sees it: states, answers, restarts."""
 
-    def __init__(self, answers, delay=0.0) -> None:
+    def __init__(self, answers, delay=0.0, failed=None) -> None:
         self.answers = dict(answers)
         self.delay = delay
         self.restarted = []
-        self.failed = {}
+        self.failed = dict(failed or {})
         self.asked = []
         #: told active by their process, their get_state not discovered yet
         self.discovered_later = set()
@@ -24,8 +26,16 @@ class Instances:
     def running(self) -> bool:
         return False
 
+    def driving(self, name) -> bool:
+        return False
+
     def states(self):
-        return dict.fromkeys(self.answers, 'active')
+        states = dict.fromkeys(self.answers, 'active')
+        states.update(dict.fromkeys(self.failed, 'failed'))
+        return states
+
+    def failures(self):
+        return dict(self.failed)
 
     def probe(self, name, timeout):
         self.asked.append((name, time.monotonic()))
@@ -40,8 +50,13 @@ class Instances:
     def restart(self, *names) -> None:
         self.restarted.append(names)
 
-    def instance_failed(self, name, why) -> None:
-        self.failed[name] = why
+    def instance_failed(self, name, why, report=True) -> None:
+        if not report or name not in self.failed:
+            self.failed[name] = why
+
+    def recovered(self, name):
+        self.failed.pop(name, None)
+        return []
 
 
 def _beat(instances, silent, here=(), respawn=()):
@@ -90,6 +105,7 @@ def test_an_instance_whose_service_is_still_discovered_is_not_silent_until_it_is
 def test_what_answers_again_is_told_and_what_came_back_is_brought_up_together(monkeypatch):
     said = []
     monkeypatch.setattr(heartbeat, 'say', lambda level, text: said.append((level, text)))
+    monkeypatch.setattr(drift, 'say', lambda level, text: said.append((level, text)))
     instances = Instances({'sender': 'unconfigured', 'server': 'unconfigured',
                            'receiver': 'active', 'local': 'unconfigured'})
     silent = {'sender': 'no answer for 3 s', 'server': 'no answer for 3 s',
@@ -98,9 +114,10 @@ def test_what_answers_again_is_told_and_what_came_back_is_brought_up_together(mo
     beat.heard(instances.answers)
     # one bring-up for both: each would bring their successors up too
     assert instances.restarted == [('sender', 'server')]
-    assert silent == {'local': 'it is unconfigured, not active'}
+    assert silent == {}
     # an instance this manager started, unconfigured: cleaned up behind its back
     assert instances.failed == {'local': 'is unconfigured, not active'}
+    assert ('error', 'instance local is unconfigured, not active (heartbeat)') in said
     assert ('info', 'instance receiver answers again (heartbeat)') in said
     assert ('info', 'instance sender came back (heartbeat): bringing it up') in said
 
@@ -112,7 +129,8 @@ def test_an_instance_marked_respawn_comes_back_here_too():
 
 def test_a_failed_instance_of_another_host_comes_back_once_its_process_went(monkeypatch):
     monkeypatch.setattr(heartbeat, 'say', lambda level, text: None)
-    instances = Instances({'remote': 'unconfigured', 'local': None})
+    instances = Instances({'remote': 'unconfigured', 'local': None},
+                          failed={'remote': 'failed to configure (it is unconfigured)'})
     beat = _beat(instances, {}, here={'local'})
     # its configure failed: it answers unconfigured all along, and is not retried
     beat.heard({'remote': 'unconfigured'}, failed={'remote'})
@@ -121,3 +139,39 @@ def test_a_failed_instance_of_another_host_comes_back_once_its_process_went(monk
     beat.heard({'remote': None}, failed={'remote'})
     beat.heard({'remote': 'unconfigured'}, failed={'remote'})
     assert instances.restarted == [('remote',)]
+
+
+def test_a_failure_clears_once_the_instance_is_active_again_whatever_repaired_it(monkeypatch):
+    said = []
+    monkeypatch.setattr(heartbeat, 'say', lambda level, text: said.append((level, text)))
+    monkeypatch.setattr(drift, 'say', lambda level, text: said.append((level, text)))
+    instances = Instances({'local': 'inactive', 'remote': 'inactive'})
+    beat = _beat(instances, {}, here={'local'})
+    # an operator deactivates both
+    beat.heard(dict(instances.answers))
+    assert instances.failed == dict.fromkeys(['local', 'remote'], 'is inactive, not active')
+    # and cleans one up: failed still, the state it is in told
+    beat.heard({'local': 'unconfigured', 'remote': 'inactive'}, failed={'local', 'remote'})
+    assert instances.failed == {'local': 'is unconfigured, not active',
+                                'remote': 'is inactive, not active'}
+    # then activates both again: failed instances are asked too, here or elsewhere
+    beat.heard({'local': 'active', 'remote': 'active'}, failed={'local', 'remote'})
+    assert instances.failed == {} and instances.restarted == []
+    assert ('info', 'instance local is active again (heartbeat)') in said
+    assert ('info', 'instance remote is active again (heartbeat)') in said
+
+
+def test_failed_instances_are_asked_too(monkeypatch):
+    monkeypatch.setattr(drift, 'say', lambda level, text: None)
+    instances = Instances({'local': 'active', 'fine': 'active'},
+                          failed={'local': 'is inactive, not active'})
+    stopping = threading.Event()
+    beating = threading.Thread(target=_beat(instances, {}, here={'local', 'fine'}).run,
+                               args=(stopping,))
+    beating.start()
+    try:
+        assert wait_until(lambda: not instances.failed)
+    finally:
+        stopping.set()
+        beating.join(5)
+    assert 'local' in {name for name, _ in instances.asked}
