@@ -50,9 +50,12 @@ class Listener:
         self.node_name = ''
         if self.names:
             import rclpy
+            # a name of its own: the context's ROS arguments (a __node remapping
+            # of the process) are the manager's node's, not this one's
             taker = rclpy.create_node(
                 f'{node.get_name()}_watch', namespace=node.get_namespace(),
-                context=node.context, start_parameter_services=False, enable_rosout=False)
+                context=node.context, start_parameter_services=False, enable_rosout=False,
+                use_global_arguments=False)
             self.node_name = taker.get_fully_qualified_name()
             node.context.on_shutdown(taker.destroy_node)
             for name, type_name in sorted(self.names.items()):
