@@ -6,7 +6,10 @@ The processes of a system's instances: how they are started, and what they tell.
 - :mod:`.processes`: the command line of each process, one per instance or
   shared (a Python process, a C++ component container), as the launch files
   have them;
-- :mod:`.supervision`: those processes started, watched and stopped;
+- :mod:`.supervision`: those processes started, watched and stopped, ending
+  with the ``bringup`` that started them;
+- :mod:`.running`: what of a system runs on this host already (/proc), before
+  a ``bringup`` starts anything;
 - :mod:`.container` and :mod:`.cpp_container`: the shared processes, which
   bring their instances up and down by themselves;
 - :mod:`.told` and :mod:`.reports`: what the shared processes tell the

@@ -36,15 +36,17 @@ from robmosys_runtime.system.host import run_host
 from robmosys_runtime.system.run import run_manager
 from robmosys_runtime.tools.arguments import (
     any_given, ArgumentError, ARGUMENTS, log_level, moved_description, node_values,
-    normalized_namespace, sim_time, temporary, without_ros_args, written)
+    normalized_namespace, ros_args_only, sim_time, temporary, without_ros_args, written)
 from robmosys_runtime.tools.locations import resolve_locations
 
 
 def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
     """Run the system of a description; return the exit status."""
-    # ros2 launch may hand the manager ROS arguments: rclpy reads those
-    args = options(description_file).parse_args(
-        without_ros_args(list(sys.argv[1:] if argv is None else argv)))
+    # ros2 launch may hand the manager ROS arguments: they are its node's
+    # (launch_ros' name= is a __node remapping), which rclpy reads
+    argv = list(sys.argv[1:] if argv is None else argv)
+    args = options(description_file).parse_args(without_ros_args(argv))
+    args.ros_args = ros_args_only(argv)
     with open(args.description, encoding='utf-8') as stream:
         description = resolve_locations(json.load(stream))
     package = description['package']

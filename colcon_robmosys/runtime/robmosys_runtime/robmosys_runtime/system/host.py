@@ -18,8 +18,9 @@ import threading
 from typing import Any, Dict, Iterator
 
 from robmosys_runtime.hosting.output import say
-from robmosys_runtime.hosting.processes import NotInstalled, plan_processes
-from robmosys_runtime.hosting.supervision import not_installed, Processes
+from robmosys_runtime.hosting.processes import Groups, NotInstalled, plan_processes
+from robmosys_runtime.hosting.running import mark
+from robmosys_runtime.hosting.supervision import before_start, not_installed, Processes
 
 
 def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file: str) -> int:
@@ -29,15 +30,11 @@ def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file:
     The manager, on its own host, brings them up with the others; instances
     marked respawn are started again here, and its heartbeat brings them back.
     """
-    try:
-        groups = plan_processes(description, args.description, params_file, host=args.host,
-                                shared=args.processes)
-    except NotInstalled as error:
-        return not_installed(error)
-    if not groups:
+    if not any(i.get('host', '') == args.host for i in description['instances']):
         say('error', f'no instance of the system runs on the host {args.host}')
         return 1
     stopping = threading.Event()
+    groups: Groups = {}
 
     def exited(group: str, code: int) -> None:
         if stopping.is_set():
@@ -50,9 +47,9 @@ def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file:
         else:
             say('error', f"{', '.join(names)} exited with code {code}")
 
-    # started from the main thread, and again from the thread that watches them
-    # (exited): both live as long as this bringup, and the instances end with it
-    processes = Processes(exited, end_with_parent=True)
+    # the instances end with this bringup, even killed, and carry its mark
+    processes = Processes(exited, end_with_parent=True, mark=mark(
+        description['package'], description.get('namespace') or '', args.host))
 
     def start(group: str) -> None:
         processes.start(group, groups[group][1])
@@ -65,12 +62,25 @@ def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file:
 
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, on_signal)
+    # what a bringup --host of this host left is waited for; a node that runs
+    # already is taken as it is (before_start)
+    local = before_start(description, args.host, stopping.is_set)
+    if local is None:
+        return 1
+    if stopping.is_set():
+        return 0
+    try:
+        groups.update(plan_processes(local, args.description, params_file, host=args.host,
+                                     shared=args.processes))
+    except NotInstalled as error:
+        return not_installed(error)
     try:
         for group in groups:
             start(group)
         processes.watch()
         started = sorted(n for names, _ in groups.values() for n in names)
-        say('info', f"host {args.host}: started {', '.join(started)}")
+        if started:
+            say('info', f"host {args.host}: started {', '.join(started)}")
         with host_watch(description, args, stopping):
             while not stopping.wait(0.5):
                 pass

@@ -23,7 +23,7 @@ from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.executors import Executor
 from rclpy.node import Node
 from robmosys_runtime.hosting.output import say
-from robmosys_runtime.hosting.processes import plan_processes, shared_python
+from robmosys_runtime.hosting.processes import Groups, plan_processes, shared_python
 from robmosys_runtime.hosting.reports import GRACE, Reports
 from robmosys_runtime.hosting.supervision import Processes
 from robmosys_runtime.system.activation import SystemActivation
@@ -114,18 +114,21 @@ class Manager:
     :param processes: the processes of this host, if started already
     :param told: the states the shared process told, if it told them before
         the manager was made (``bringup`` reads them from a pipe)
+    :param groups: the processes of this host, if planned already (without
+        the instances that ran before the manager started)
     """
 
     def __init__(self, node: Node, description: Dict[str, Any], params_file: str,
                  args: argparse.Namespace, processes: Optional[Processes] = None,
-                 told: Optional[Dict[str, str]] = None) -> None:
+                 told: Optional[Dict[str, str]] = None,
+                 groups: Optional[Groups] = None) -> None:
         self.node = node
         self.description = description
         self._args = args
         self._params_file = params_file
         self.instances = {i['instance']: i for i in description['instances']}
         #: process name -> (its instances, its command line), of the manager's host
-        self.groups = {} if args.attach else plan_processes(
+        self.groups = groups if groups is not None else {} if args.attach else plan_processes(
             description, args.description, params_file, shared=args.processes)
         self._group_of = {n: g for g, (names, _) in self.groups.items() for n in names}
         managed = {n: i['fqn'] for n, i in self.instances.items() if i['managed']}

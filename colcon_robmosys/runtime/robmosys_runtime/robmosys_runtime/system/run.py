@@ -20,7 +20,8 @@ from typing import Any, Dict, Optional
 
 from robmosys_runtime.hosting.output import say
 from robmosys_runtime.hosting.processes import NotInstalled, plan_processes
-from robmosys_runtime.hosting.supervision import not_installed, Processes
+from robmosys_runtime.hosting.running import mark
+from robmosys_runtime.hosting.supervision import before_start, not_installed, Processes
 from robmosys_runtime.hosting.told import (
     bringing_itself_down, read_steps, read_told, read_told_file, tellers, tells_all, told_file)
 from robmosys_runtime.system.levels import Outcome, report
@@ -46,8 +47,11 @@ def run_manager(description: Dict[str, Any], args: argparse.Namespace,
     """Run the system of a description with its manager; return the exit status."""
     # The instances start first: importing rclpy and making the manager's node
     # take a third of a second, which they spend starting in parallel. Their
-    # exits are watched once the manager is there (Manager.start).
-    processes = Processes(on_exit=None)
+    # exits are watched once the manager is there (Manager.start). They end
+    # with the manager, even killed, and carry its mark: a manager started
+    # again finds what this one left
+    processes = Processes(on_exit=None, end_with_parent=True, mark=mark(
+        description['package'], description.get('namespace') or '', ''))
     signalled = threading.Event()
     manager: Optional[Any] = None
 
@@ -62,9 +66,18 @@ def run_manager(description: Dict[str, Any], args: argparse.Namespace,
 
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, on_signal)
+    # the processes of this host are planned from it: an instance whose node
+    # runs already is no process of this host's (before_start)
+    local = description
     if not args.attach:
+        looked = before_start(description, '', signalled.is_set)
+        if looked is None:
+            return 1
+        if signalled.is_set():
+            return 0
+        local = looked
         try:
-            started = start_instances(description, args, params_file, processes, signalled)
+            started = start_instances(local, args, params_file, processes, signalled)
         except NotInstalled as error:
             return not_installed(error)
     elif args.told_file and tells_all(description, args.processes):
@@ -89,8 +102,13 @@ def run_manager(description: Dict[str, Any], args: argparse.Namespace,
     from robmosys_runtime.system.manager import Manager, serve
 
     package = description['package']
-    rclpy.init(args=['--ros-args', '-r', f'__node:={package}_bringup',
-                     *description.get('ros_arguments', ())])
+    # The node is named by create_node, not by a __node remapping here: that
+    # would rename every node of the context, the watch's too. The process's
+    # own ROS arguments are its node's (launch_ros' name= renames it); the
+    # helper nodes ignore them (use_global_arguments=False) and are named
+    # after it (<name>_watch).
+    rclpy.init(args=['bringup', *getattr(args, 'ros_args', ()),
+                     '--ros-args', *description.get('ros_arguments', ())])
     # rclpy.init installed handlers that shut its context down at once: the
     # manager needs it to bring the system down
     for signum in (signal.SIGINT, signal.SIGTERM):
@@ -102,7 +120,9 @@ def run_manager(description: Dict[str, Any], args: argparse.Namespace,
     executor.add_node(node)
     spinner = threading.Thread(target=serve, args=(executor,), daemon=True)
     spinner.start()
-    manager = Manager(node, description, params_file, args, processes, told=started.told)
+    manager = Manager(node, description, params_file, args, processes, told=started.told,
+                      groups={} if args.attach else plan_processes(
+                          local, args.description, params_file, shared=args.processes))
     if signalled.is_set():
         manager.stopping.set()
     status = 0

@@ -295,3 +295,24 @@ def without_ros_args(argv: Sequence[str]) -> List[str]:
         elif not ros:
             kept.append(arg)
     return kept
+
+
+def ros_args_only(argv: Sequence[str]) -> List[str]:
+    """
+    Return the ROS arguments of argv: what :func:`without_ros_args` leaves out.
+
+    Each ``--ros-args`` is kept with the arguments it starts, so that rcl
+    reads them as it would have read them in argv; the ``--`` that ends them
+    is left out.
+    """
+    taken: List[str] = []
+    ros = False
+    for arg in argv:
+        if arg == '--ros-args':
+            ros = True
+            taken.append(arg)
+        elif ros and arg == '--':
+            ros = False
+        elif ros:
+            taken.append(arg)
+    return taken

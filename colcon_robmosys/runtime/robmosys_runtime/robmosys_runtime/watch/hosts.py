@@ -75,9 +75,11 @@ class Taker:
     def __init__(self, node: Node, names: Dict[str, str], node_name: str) -> None:
         import rclpy
         self._taken: List[Any] = []
+        # a name of its own: the context's ROS arguments (a __node remapping of
+        # the process) are the first node's, not this one's
         self.node = rclpy.create_node(
             node_name, namespace=node.get_namespace(), context=node.context,
-            start_parameter_services=False, enable_rosout=False)
+            start_parameter_services=False, enable_rosout=False, use_global_arguments=False)
         node.context.on_shutdown(self.node.destroy_node)
         for name, type_name in sorted(names.items()):
             try:

@@ -117,6 +117,27 @@ def test_ros_arguments_are_left_out_as_rclpy_leaves_them_out():
         assert without_ros_args(argv) == remove_ros_args(['bringup', *argv])[1:], argv
 
 
+def test_the_ros_arguments_are_the_manager_s_own_as_rcl_reads_them():
+    from rclpy.utilities import remove_ros_args
+    from robmosys_runtime.tools.arguments import ros_args_only
+    argv = ['--timeout', '3', '--ros-args', '-r', '__node:=site', '--', '--attach',
+            '--ros-args', '--log-level', 'debug']
+    taken = ros_args_only(argv)
+    assert taken == ['--ros-args', '-r', '__node:=site', '--ros-args', '--log-level', 'debug']
+    # what rclpy would leave is the rest: nothing of the options
+    assert remove_ros_args(['bringup', *taken]) == ['bringup']
+    context = rclpy.Context()
+    rclpy.init(context=context, args=['bringup', *taken, '--ros-args'])
+    try:
+        node = rclpy.create_node('x_bringup', context=context)
+        helper = rclpy.create_node('x_bringup_watch', context=context, use_global_arguments=False)
+        assert (node.get_name(), helper.get_name()) == ('site', 'x_bringup_watch')
+        node.destroy_node()
+        helper.destroy_node()
+    finally:
+        rclpy.try_shutdown(context=context)
+
+
 def test_each_service_answers_from_the_moment_it_exists(monkeypatch):
     """The manager's node spins while the manager is made: no service sees it half made."""
     said = []
