@@ -161,3 +161,19 @@ def assert_no_traceback(output: str, everything: str = '') -> None:
     found = [i for i, line in enumerate(lines) if 'Traceback (most recent call last)' in line]
     excerpts = ['\n'.join(lines[i:i + 40]) for i in found]
     assert not found, '\n...\n'.join(excerpts) + f'\n--- the whole output:\n{everything or output}'
+
+
+def pytest_terminal_summary(terminalreporter) -> None:
+    """Print what tests measured (``record_property('measured', line)``), as a section.
+
+    The figures of a test that asserts only that a system works (the fleet's
+    link and CPU, tests/test_fleet.py) show in CI's log, with pytest-xdist too:
+    a report's properties travel from the worker that ran it.
+    """
+    lines = [value for reports in terminalreporter.stats.values() for report in reports
+             if getattr(report, 'when', None) == 'call'
+             for name, value in getattr(report, 'user_properties', ()) if name == 'measured']
+    if lines:
+        terminalreporter.section('measured')
+        for line in lines:
+            terminalreporter.write_line(str(line))

@@ -46,12 +46,12 @@ systems:
 """
 
 
-def _load(tmp_path: Path):
+def _load(tmp_path: Path, model: str = TWO_ROBOTS):
     src = tmp_path / 'src'
     for package in ('simple_msgs', 'publisher', 'subscriber', 'pubsub_system'):
         shutil.copytree(TEST_WORKSPACE / 'src' / package, src / package)
     (src / 'two_robots').mkdir()
-    (src / 'two_robots' / 'robmosys.yaml').write_text(TWO_ROBOTS)
+    (src / 'two_robots' / 'robmosys.yaml').write_text(model)
     result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
     assert result.errors == []
     return result
@@ -76,6 +76,71 @@ def test_the_instances_of_subsystems_join_the_system_in_their_namespace(tmp_path
     # a change of the subsystem's model regenerates the system; colcon builds it first
     assert 'pubsub_system' in model_dependencies(system)
     assert result.warnings_of('two_robots') == []
+
+
+#: a fleet: the pubsub system once per robot, each on its robot's host, a watcher on the
+#: manager's host
+FLEET = """\
+robmosys: 1
+systems:
+  - package: fleet
+    license: Apache-2.0
+    maintainers: [{name: A, email: a@example.com}]
+    subsystems:
+      robot1: {system: pubsub_system, host: robot1}
+      robot2: {system: pubsub_system, host: robot2}
+    instances:
+      watcher: {component: subscriber, after: [robot1.publisher]}
+    connections:
+      - {from: robot1.publisher.pMap, to: watcher.rMap}
+"""
+
+
+def test_the_instances_of_a_subsystem_run_on_its_host(tmp_path):
+    result = _load(tmp_path, FLEET)
+    system = result.workspace.model('fleet')
+    assert isinstance(system, System)
+    assert [(i.name, i.host) for i in system.instances] == [
+        ('watcher', ''), ('robot1.publisher', 'robot1'), ('robot1.subscriber', 'robot1'),
+        ('robot2.publisher', 'robot2'), ('robot2.subscriber', 'robot2')]
+    out = tmp_path / 'out'
+    generate_package(plan_package(result.workspace, 'fleet'), out)
+    # each robot has its launch files, and the manager knows where each instance runs
+    assert {p.name for p in (out / 'launch').glob('fleet.on_*.launch.py')} == {
+        'fleet.on_robot1.launch.py', 'fleet.on_robot1.nodes.launch.py',
+        'fleet.on_robot2.launch.py', 'fleet.on_robot2.nodes.launch.py'}
+    description = json.loads((out / 'bringup.json').read_text())
+    assert {i['instance']: i['host'] for i in description['instances']} == {
+        'watcher': '', 'robot1.publisher': 'robot1', 'robot1.subscriber': 'robot1',
+        'robot2.publisher': 'robot2', 'robot2.subscriber': 'robot2'}
+
+
+def test_an_instance_of_a_subsystem_keeps_a_host_of_its_own(tmp_path):
+    """A subsystem's host is where its instances run that do not name one."""
+    arm = ('robmosys: 1\nsystems:\n  - package: arm_system\n    license: Apache-2.0\n'
+           '    maintainers: [{name: A, email: a@example.com}]\n    instances:\n'
+           '      publisher: {component: publisher, host: arm}\n'
+           '      subscriber: {component: subscriber}\n'
+           '    connections:\n      - {from: publisher.pMap, to: subscriber.rMap}\n')
+    (tmp_path / 'src' / 'arm_system').mkdir(parents=True)
+    (tmp_path / 'src' / 'arm_system' / 'robmosys.yaml').write_text(arm)
+    result = _load(tmp_path, FLEET.replace('pubsub_system, host: robot2',
+                                           'arm_system, host: robot2'))
+    system = result.workspace.model('fleet')
+    assert {i.name: i.host for i in system.instances if i.name.startswith('robot2.')} == {
+        'robot2.publisher': 'arm', 'robot2.subscriber': 'robot2'}
+
+
+def test_an_instance_named_after_the_launch_files_of_a_subsystem_host_is_an_error(tmp_path):
+    src = tmp_path / 'src'
+    for package in ('simple_msgs', 'publisher', 'subscriber', 'pubsub_system'):
+        shutil.copytree(TEST_WORKSPACE / 'src' / package, src / package)
+    (src / 'fleet').mkdir()
+    (src / 'fleet' / 'robmosys.yaml').write_text(FLEET.replace('watcher:', 'on_robot2:')
+                                                 .replace('watcher.rMap', 'on_robot2.rMap'))
+    result = load_workspace(find_model_files([src]), InterfaceIndex([Path(sys.prefix)]))
+    assert [d.message for d in result.errors] == [
+        "instance name 'on_robot2' is the name of the launch files of the host 'robot2'"]
 
 
 def test_the_system_package_starts_every_node_under_its_name(tmp_path):

@@ -100,9 +100,10 @@ class _Expander:
 def _pushed(instance: Instance, subsystem: Subsystem) -> Instance:
     """Return an instance of a subsystem as an instance of the including system."""
     namespace = subsystem.namespace + instance.namespace
+    # the included system's own host (none named) is where the subsystem runs
     return replace(instance, name=f'{subsystem.name}.{instance.name}', namespace=namespace,
                    after=tuple(f'{subsystem.name}.{a}' for a in instance.after),
-                   node=instance.node_name)
+                   node=instance.node_name, host=instance.host or subsystem.host)
 
 
 def _renamed(connection: Connection, subsystem: str) -> Connection:

@@ -46,7 +46,9 @@ class SystemBuilder(BuilderBase):
                 watch_locations=(
                     self.at_each(ipath + ('unconnected',), body.get('unconnected', ())) +
                     self.at_each(ipath + ('quiet',), body.get('quiet', ())))))
-        hosts = {i.host for i in instances if i.host}
+        # a subsystem's host has launch files too
+        hosts = {i.host for i in instances if i.host} | {
+            body['host'] for body in raw.get('subsystems', {}).values() if body.get('host')}
         for instance in instances:
             if instance.name.startswith('on_') and instance.name[3:] in hosts:
                 # <system>.on_<host>.launch.py starts the instances of a host
@@ -63,7 +65,7 @@ class SystemBuilder(BuilderBase):
             namespace = body.get('namespace', sname)
             subsystems.append(Subsystem(
                 sname, body['system'], '/' + namespace.strip('/') if namespace.strip('/')
-                else '', self.at(spath, key=True)))
+                else '', self.at(spath, key=True), body.get('host', '')))
         if not raw.get('instances') and not subsystems:
             self.error(path, "a system has 'instances' or 'subsystems'", key=True)
         connections = []

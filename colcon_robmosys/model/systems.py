@@ -131,6 +131,8 @@ class Subsystem:
     #: absolute, without a trailing slash; '' for the root namespace
     namespace: str
     location: Location
+    #: the host of its instances that name none; '' for the manager's
+    host: str = ''
 
 
 @dataclass(frozen=True)

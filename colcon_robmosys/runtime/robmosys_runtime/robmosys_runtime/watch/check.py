@@ -13,11 +13,14 @@ from __future__ import annotations
 import os
 import threading
 import time
-from typing import Any, Dict, List
+from typing import Any, Dict, List, Tuple
 
 from rclpy.node import Node
 from robmosys_runtime.watch.conformance import Difference, Model
 from robmosys_runtime.watch.watcher import read_parameters, Watch
+
+#: seconds after which a state asked and not answered is asked again
+ASK_AGAIN = 2.0
 
 
 def check_once(description: Dict[str, Any], *, wait: float = 10.0, silence: float = 5.0,
@@ -81,28 +84,39 @@ def check_once(description: Dict[str, Any], *, wait: float = 10.0, silence: floa
 
 
 def _states(node: Node, model: Model, present: Any, timeout: float) -> Dict[str, str]:
-    """Ask each managed instance its lifecycle state."""
+    """
+    Ask each managed instance its lifecycle state, all at once, within timeout.
+
+    rmw_fastrtps drops an answer to a client whose reader of answers the server
+    has not matched yet, and through a discovery server this new participant's
+    endpoints reach the other hosts a while after it sees theirs: a request not
+    answered within ASK_AGAIN seconds is sent again.
+    """
     from lifecycle_msgs.srv import GetState
     states: Dict[str, str] = {}
-    pending = []
+    clients: Dict[str, Any] = {}
     for name, instance in model.instances.items():
         if not instance['managed']:
             states[name] = 'running'
-            continue
-        if instance['fqn'] not in present:
+        elif instance['fqn'] not in present:
             states[name] = 'absent'
-            continue
-        client: Any = node.create_client(GetState, f"{instance['fqn']}/get_state")
-        pending.append((name, client, client.call_async(GetState.Request())
-                        if client.wait_for_service(timeout_sec=timeout) else None))
-    deadline = time.monotonic() + timeout
-    for name, client, future in pending:
-        while future is not None and not future.done() and time.monotonic() < deadline:
-            time.sleep(0.02)
-        answer = future.result() if future is not None and future.done() else None
-        if answer is not None:
-            states[name] = answer.current_state.label
         else:
-            states[name] = 'unknown (no answer)'
+            clients[name] = node.create_client(GetState, f"{instance['fqn']}/get_state")
+    asked: Dict[str, Tuple[Any, float]] = {}
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline and any(n not in states for n in clients):
+        for name, client in clients.items():
+            future, when = asked.get(name, (None, 0.0))
+            if name in states:
+                continue
+            if future is not None and future.done() and future.result() is not None:
+                states[name] = future.result().current_state.label
+            elif time.monotonic() - when >= ASK_AGAIN and client.service_is_ready():
+                if future is not None:
+                    client.remove_pending_request(future)
+                asked[name] = (client.call_async(GetState.Request()), time.monotonic())
+        time.sleep(0.02)
+    for name, client in clients.items():
+        states.setdefault(name, 'unknown (no answer)')
         node.destroy_client(client)
     return states
