@@ -33,11 +33,10 @@ from typing import Callable, Iterator
 
 import pytest
 
-from colcon_robmosys.devtools import ros_env
+from colcon_robmosys.devtools import netns, ros_env
 from colcon_robmosys.devtools.ros_env import Background, free_domain_id
 from colcon_robmosys.devtools.system import wait_until
 from conftest import assert_no_traceback, BuiltWorkspace, requires_ros
-from harness import netns
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
