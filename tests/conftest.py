@@ -11,10 +11,11 @@ from pathlib import Path
 import pickle
 import shutil
 import sys
+from typing import Iterator
 
 import pytest
 
-from colcon_robmosys.devtools import ros_env, workspace
+from colcon_robmosys.devtools import netns, ros_env, workspace
 
 REPO = Path(__file__).resolve().parent.parent
 TEST_WORKSPACE = REPO / 'test_workspace'
@@ -76,6 +77,21 @@ def colcon(args: list[str], *, cwd: Path, timeout: float = 900, domain_id: int =
     env.update(extra_env or {})
     return ros_env.run([str(Path(sys.prefix) / 'bin' / 'colcon'), *args],
                        env=env, cwd=cwd, timeout=timeout)
+
+
+def hosts_of(names: tuple[str, ...], tmp_path_factory: pytest.TempPathFactory) \
+        -> Iterator[netns.Network]:
+    """
+    Yield hosts of names as network namespaces, for a fixture of a module.
+
+    They are removed after it; a test that needs them is skipped with the
+    reason where they cannot be made (not Linux, not root, no iproute2).
+    """
+    reason = netns.unavailable_reason()
+    if reason:
+        pytest.skip(reason)
+    with netns.Network(names, tmp_path_factory.mktemp('hosts')) as network:
+        yield network
 
 
 def build_workspace(src: Path, root: Path, *extra: str) -> BuiltWorkspace:

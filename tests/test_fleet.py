@@ -36,7 +36,7 @@ import pytest
 from colcon_robmosys.devtools import netns, ros_env
 from colcon_robmosys.devtools.ros_env import Background, free_domain_id
 from colcon_robmosys.devtools.system import wait_until
-from conftest import assert_no_traceback, BuiltWorkspace, requires_ros
+from conftest import assert_no_traceback, BuiltWorkspace, hosts_of, requires_ros
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
@@ -72,11 +72,7 @@ PROBE = Path(__file__).resolve().parent / 'harness' / 'ros_probe.py'
 @pytest.fixture(scope='module')
 def network(tmp_path_factory) -> Iterator[netns.Network]:
     """Return base and the robots, made once for the module and removed after it."""
-    reason = netns.unavailable_reason()
-    if reason:
-        pytest.skip(reason)
-    with netns.Network(('base', *ROBOTS), tmp_path_factory.mktemp('hosts')) as network:
-        yield network
+    yield from hosts_of(('base', *ROBOTS), tmp_path_factory)
 
 
 @pytest.fixture(scope='module')

@@ -28,7 +28,8 @@ import yaml
 from colcon_robmosys.devtools import netns
 from colcon_robmosys.devtools.ros_env import Background, free_domain_id
 from colcon_robmosys.devtools.system import wait_until
-from conftest import assert_no_traceback, build_workspace, BuiltWorkspace, requires_ros
+from conftest import (
+    assert_no_traceback, build_workspace, BuiltWorkspace, hosts_of, requires_ros)
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
@@ -116,11 +117,7 @@ def built(tmp_path_factory) -> BuiltWorkspace:
 @pytest.fixture(scope='module')
 def network(tmp_path_factory) -> Iterator[netns.Network]:
     """Return the base station and the robot, made once for the module."""
-    reason = netns.unavailable_reason()
-    if reason:
-        pytest.skip(reason)
-    with netns.Network(('base', 'robot'), tmp_path_factory.mktemp('site_hosts')) as network:
-        yield network
+    yield from hosts_of(('base', 'robot'), tmp_path_factory)
 
 
 class Site:

@@ -31,7 +31,7 @@ from test_cpp_system import requires_rclcpp
 from colcon_robmosys.devtools import netns
 from colcon_robmosys.devtools.ros_env import Background, free_domain_id
 from colcon_robmosys.devtools.system import wait_until
-from conftest import assert_no_traceback, BuiltWorkspace, requires_ros
+from conftest import assert_no_traceback, BuiltWorkspace, hosts_of, requires_ros
 
 pytestmark = [pytest.mark.integration, requires_ros]
 
@@ -54,11 +54,7 @@ PROBE = Path(__file__).resolve().parent / 'harness' / 'ros_probe.py'
 @pytest.fixture(scope='module')
 def network(tmp_path_factory) -> Iterator[netns.Network]:
     """Return the three hosts, made once for the module and removed after it."""
-    reason = netns.unavailable_reason()
-    if reason:
-        pytest.skip(reason)
-    with netns.Network(('base', *HOSTS), tmp_path_factory.mktemp('hosts')) as network:
-        yield network
+    yield from hosts_of(('base', *HOSTS), tmp_path_factory)
 
 
 def _placed(built: BuiltWorkspace, package: str, hosts: dict[str, tuple[str, ...]],
