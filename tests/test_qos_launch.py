@@ -114,9 +114,10 @@ def _endpoint(driver: LifecycleDriver, topic: str, kind: str, timeout: float = 2
 
     def seen() -> bool:
         # neither the driver nor a system manager, whose conformance watch takes the
-        # latest message of each push port it watches (a reader of its own)
+        # latest message of each push port it watches (a reader on its node
+        # <system>_bringup_watch)
         found[:] = [i for i in query(topic) if i.node_name != driver.node.get_name() and
-                    not i.node_name.endswith('_bringup')]
+                    not i.node_name.endswith(('_bringup', '_bringup_watch'))]
         return len(found) == 1
     assert wait_until(seen, timeout=timeout), f'{kind} of {topic}: {found}'
     return found[0].qos_profile

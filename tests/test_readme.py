@@ -104,8 +104,9 @@ def test_documents_hold_no_machine_path(document: Path):
     assert found == []
 
 
-#: what Jazzy's wheel list leaves out of Kilted's: packages Jazzy does not have
-KILTED_ONLY = {'ros-ament-cmake-ros-core'}
+#: what Jazzy's wheel list leaves out of Kilted's: packages Jazzy does not have, and
+#: psutil, which Kilted's `fastdds` command imports (Jazzy's does not)
+KILTED_ONLY = {'ros-ament-cmake-ros-core', 'psutil'}
 
 
 def _requirements(name: str) -> list[str]:

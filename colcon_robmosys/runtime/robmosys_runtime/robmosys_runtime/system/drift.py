@@ -68,7 +68,7 @@ class Drift:
         import rclpy
         from rclpy.executors import SingleThreadedExecutor
         follower = rclpy.create_node(
-            f'{node.get_name()}_states', namespace=node.get_namespace(), context=node.context,
+            f'_{node.get_name()}_states', namespace=node.get_namespace(), context=node.context,
             # a remap of __node among the global arguments (bringup's) renames every node
             use_global_arguments=False, start_parameter_services=False, enable_rosout=False)
         executor = SingleThreadedExecutor(context=node.context)

@@ -135,7 +135,7 @@ class GraphReader:
         context = rclpy.Context()
         rclpy.init(context=context, args=['--ros-args', '--disable-rosout-logs'])
         self._own = rclpy.create_node(
-            f'{self._node.get_name()}_graph', namespace=self._node.get_namespace(),
+            f'_{self._node.get_name()}_graph', namespace=self._node.get_namespace(),
             context=context, start_parameter_services=False, enable_rosout=False)
         self._reading = self._own
         self._fresh = now
