@@ -102,8 +102,9 @@ def host_watch(description: Dict[str, Any], args: argparse.Namespace,
     ``<system>_<host>_bringup``.
     """
     from robmosys_runtime.watch.conformance import Model
-    from robmosys_runtime.watch.hosts import watched_names
-    if args.check_period <= 0 or not watched_names(Model(description), args.host):
+    from robmosys_runtime.watch.hosts import names_of, summary_topic, watched_names
+    names = names_of(watched_names(Model(description)), args.host)
+    if args.check_period <= 0 or not names:
         yield
         return
     import rclpy
@@ -115,7 +116,8 @@ def host_watch(description: Dict[str, Any], args: argparse.Namespace,
                signal_handler_options=SignalHandlerOptions.NO)
     node = rclpy.create_node(f"{description['package']}_{args.host}_bringup",
                              namespace=description.get('namespace') or None, context=context)
-    summary = HostSummary(node, description, args.host, args.check_period)
+    summary = HostSummary(node, names, summary_topic(description), args.host,
+                          args.check_period)
     thread = threading.Thread(target=summary.run, args=(stopping,), daemon=True,
                               name='host watch')
     thread.start()

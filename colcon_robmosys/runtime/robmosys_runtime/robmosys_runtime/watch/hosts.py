@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import threading
 import time
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Set, Tuple
 
 from rclpy.node import Node
 from rclpy.qos import QoSProfile, ReliabilityPolicy
@@ -36,23 +36,28 @@ _SUMMARIES = QoSProfile(depth=16, reliability=ReliabilityPolicy.BEST_EFFORT)
 STALE_PERIODS = 3.0
 
 
-def watched_names(model: Model, host: Optional[str] = None) -> Dict[str, str]:
+def watched_names(model: Model) -> Dict[str, Tuple[str, Optional[str]]]:
     """
-    Return name -> type of the push ports the watch listens to for silence.
+    Return name -> (type, host that listens) of the push ports watched for silence.
 
-    Those of periodic activities that may not stay quiet; with ``host``,
-    those whose every publisher runs on it ('': the manager's host).
+    Those of periodic activities that may not stay quiet. The host that
+    listens is the one every publisher of the name runs on ('': the
+    manager's host), None where publishers of several hosts share it.
     """
     names: Dict[str, str] = {}
-    hosts: Dict[str, set] = {}
+    hosts: Dict[str, Set[str]] = {}
     for instance in model.instances.values():
         for port in instance.get('ports', ()):
             if port.get('period') and not port.get('quiet'):
                 names[port['name']] = port['type']
                 hosts.setdefault(port['name'], set()).add(instance.get('host') or '')
-    if host is None:
-        return names
-    return {n: t for n, t in names.items() if hosts[n] == {host}}
+    return {n: (t, next(iter(hosts[n])) if len(hosts[n]) == 1 else None)
+            for n, t in names.items()}
+
+
+def names_of(watched: Dict[str, Tuple[str, Optional[str]]], host: str) -> Dict[str, str]:
+    """Return name -> type of the watched names a host listens to."""
+    return {n: t for n, (t, h) in watched.items() if h == host}
 
 
 def summary_topic(description: Dict[str, Any]) -> str:
@@ -103,18 +108,19 @@ class HostSummary:
     A host's part of the watch: its own push ports listened to, a summary sent.
 
     :param node: the node of the host's ``bringup --host``
+    :param names: name -> type of the ports it listens to (:func:`names_of`)
+    :param topic: the topic of the summaries (:func:`summary_topic`)
     :param host: the host, as the model names it
     """
 
-    def __init__(self, node: Node, description: Dict[str, Any], host: str,
+    def __init__(self, node: Node, names: Dict[str, str], topic: str, host: str,
                  period: float) -> None:
         from diagnostic_msgs.msg import DiagnosticStatus
         self.host = host
         self.period = period
-        self.names = watched_names(Model(description), host)
-        self._taker = Taker(node, self.names, f'{node.get_name()}_watch')
-        self._publisher = node.create_publisher(DiagnosticStatus, summary_topic(description),
-                                                _SUMMARIES)
+        self.names = names
+        self._taker = Taker(node, names, f'{node.get_name()}_watch')
+        self._publisher = node.create_publisher(DiagnosticStatus, topic, _SUMMARIES)
         self._started = time.monotonic()
         self.heard: Dict[str, float] = {}
 
@@ -146,29 +152,26 @@ class Summaries:
     """
     The manager's side: when each port of another host last carried a message.
 
+    :param watched: the watched names (:func:`watched_names`)
+    :param topic: the topic of the summaries (:func:`summary_topic`)
     :param heard: name -> time.monotonic() it last carried a message, which
         the summaries fill in for the names of other hosts
     """
 
-    def __init__(self, node: Node, description: Dict[str, Any], period: float,
-                 heard: Dict[str, float]) -> None:
+    def __init__(self, node: Node, watched: Dict[str, Tuple[str, Optional[str]]], topic: str,
+                 period: float, heard: Dict[str, float]) -> None:
         from diagnostic_msgs.msg import DiagnosticStatus
-        model = Model(description)
-        every = watched_names(model)
-        local = watched_names(model, '')
-        hosts = {i.get('host') for i in model.instances.values()} - {None, ''}
         #: name -> the host that listens to it, for the names of other hosts
-        self.host_of = {n: h for h in sorted(hosts) for n in watched_names(model, h)}
+        self.host_of = {n: h for n, (_, h) in watched.items() if h}
         #: the names no host listens to (publishers on several hosts)
-        self.unheard = set(every) - set(local) - set(self.host_of)
+        self.unheard = {n for n, (_, h) in watched.items() if h is None}
         self._period = period
         self._heard = heard
         self._lock = threading.Lock()
         #: host -> time.monotonic() of its last summary
         self._last: Dict[str, float] = {}
         if self.host_of:
-            node.create_subscription(DiagnosticStatus, summary_topic(description),
-                                     self._on_summary, _SUMMARIES)
+            node.create_subscription(DiagnosticStatus, topic, self._on_summary, _SUMMARIES)
 
     def _on_summary(self, status: Any) -> None:
         now = time.monotonic()

@@ -22,7 +22,8 @@ from rclpy.node import Node
 from rclpy.qos import qos_profile_parameter_events
 from robmosys_runtime.watch.conformance import compare, Difference, Model, State
 from robmosys_runtime.watch.graph import GraphReader
-from robmosys_runtime.watch.hosts import Summaries, Taker, watched_names
+from robmosys_runtime.watch.hosts import (
+    names_of, Summaries, summary_topic, Taker, watched_names)
 
 
 class Listener:
@@ -40,12 +41,14 @@ class Listener:
         self.heard: Dict[str, float] = {}
         self.parameters: Dict[str, Dict[str, Any]] = {}
         self._lock = threading.Lock()
-        self.names = watched_names(model)
-        local = watched_names(model, '')
+        watched = watched_names(model)
+        self.names = {n: t for n, (t, _) in watched.items()}
+        local = names_of(watched, '')
         self._taker = Taker(node, local, f'{node.get_name()}_watch') if local else None
         #: the node of the watched topics, if any ('' otherwise)
         self.node_name = self._taker.node.get_fully_qualified_name() if self._taker else ''
-        self._summaries = Summaries(node, description, period, self.heard)
+        self._summaries = Summaries(node, watched, summary_topic(description), period,
+                                    self.heard)
         from rcl_interfaces.msg import ParameterEvent
         self._watched = {i['fqn'] for i in model.instances.values() if i.get('parameters')}
         node.create_subscription(ParameterEvent, '/parameter_events', self._on_parameters,
