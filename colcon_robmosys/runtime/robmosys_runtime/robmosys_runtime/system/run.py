@@ -51,7 +51,8 @@ def run_manager(description: Dict[str, Any], args: argparse.Namespace,
     # with the manager, even killed, and carry its mark: a manager started
     # again finds what this one left
     processes = Processes(on_exit=None, end_with_parent=True, mark=mark(
-        description['package'], description.get('namespace') or '', ''))
+        description['package'], description.get('namespace') or '', ''),
+        sends=args.check_period > 0 and not args.attach)
     signalled = threading.Event()
     manager: Optional[Any] = None
 
