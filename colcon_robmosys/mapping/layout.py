@@ -13,8 +13,10 @@ Instances stand in columns by how far along the data's way they are (a
 publisher left of its subscribers, a client left of its server), grouped in a
 box per host (the manager's host first) and in it a box per subsystem (the
 part of an instance's name before its last dot). A connection is a curve from
-the port its data leaves to the port it reaches, labelled with its pattern,
-type and ROS 2 name; a name outside the model is a plain label on the right.
+the port its data leaves to the port it reaches, labelled where it leaves with
+its pattern and ROS 2 name (once per port: the connections of one port share
+their name; the type is the curve's title); a name outside the model is a
+plain label on the right.
 """
 
 from __future__ import annotations
@@ -90,10 +92,13 @@ class LaidConnection:
     label: str
     name: str
     qos: str
+    type: str  # noqa: A003 - the model's word
     #: the SVG path of its curve, and where its label stands
     path: str
     label_x: int
     label_y: int
+    #: whether its label is drawn: the first connection of the port it leaves
+    labelled: bool = True
 
 
 @dataclass(frozen=True)
@@ -185,6 +190,7 @@ def lay_out(system: System, components: dict[str, Component],
             Box(PAD - 8, host_top, width - 2 * PAD + 16, y - host_top)))
         y += GAP
     connections = []
+    labelled: set[tuple[str, str]] = set()
     externals: dict[str, Box] = {}
     ext_x = width + PAD
     ext_y = PAD + GROUP_TITLE
@@ -207,11 +213,13 @@ def lay_out(system: System, components: dict[str, Component],
         path = f'M{x1},{y1} C{x1 + bend},{y1} {x2 - bend},{y2} {x2},{y2}'
         provided = provided_end(connection, components)
         kind, _, name = edge.label.partition('\\n')
+        pattern, _, type_name = kind.partition(' ')
         connections.append(LaidConnection(
             index, f'{edge.source}.{edge.source_port}' if edge.source_port else edge.source,
             f'{edge.target}.{edge.target_port}' if edge.target_port else edge.target,
-            kind, name, _qos_text(components[provided.instance], provided.port),
-            path, (x1 + x2) // 2, (y1 + y2) // 2 - 6))
+            pattern, name, _qos_text(components[provided.instance], provided.port),
+            type_name, path, x1 + 8, y1 - 4, (edge.source, edge.source_port) not in labelled))
+        labelled.add((edge.source, edge.source_port))
     total_width = ext_x + EXTERNAL_WIDTH + PAD if externals else width + PAD
     height = max(y, ext_y) + PAD
     return Layout(total_width, height, tuple(groups), tuple(laid[i.name] for i in instances),
