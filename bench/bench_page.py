@@ -78,7 +78,15 @@ def manager_cpu(install: Path, system: str, description: Path, count: int, clien
                 sys.stderr.write(output[-3000:])
                 return None
             if clients:
-                found = re.search(r'the page of the system: (http://[^/\s]+)', output)
+                # said once the manager's node is made: after the instances' report
+                # where the shared processes told they are up
+                deadline = time.monotonic() + 30
+                found = None
+                while found is None and time.monotonic() < deadline:
+                    output = os.pread(log.fileno(), os.fstat(log.fileno()).st_size, 0).decode(
+                        errors='replace')
+                    found = re.search(r'the page of the system: (http://[^/\s]+)', output)
+                    time.sleep(0.1)
                 assert found, output[-3000:]
                 readers = [subprocess.Popen([sys.executable, '-c', _CLIENT, found.group(1)],
                                             stdin=subprocess.DEVNULL)

@@ -121,6 +121,10 @@ def test_the_page_draws_the_model_and_colours_it_with_what_runs(
         assert wait_until(lambda: re.search(r'bringup: (\d+) of \1 managed instances active',
                                             manager.output()) is not None,
                           timeout=120), manager.output()
+        # said once the manager's node is made: after the report where shared processes
+        # told the instances up by themselves
+        assert wait_until(lambda: _page_url(manager.output()) is not None, timeout=30), \
+            manager.output()
         url = _page_url(manager.output())
         assert url is not None and url.startswith('http://127.0.0.1:'), manager.output()
         base, token = url.split('/?token=')
