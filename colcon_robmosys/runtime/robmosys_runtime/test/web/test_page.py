@@ -144,3 +144,9 @@ def test_the_events_send_everything_then_only_what_changed(page):
     assert changed['c:0']['differences'] == ['m.yaml:9:9: error: foreign']
     assert changed['i:listener']['state'] == 'inactive'
     connection.close()
+
+
+def test_a_port_in_use_is_refused_before_anything_starts(page):
+    host, port = page.server.server_address[:2]
+    with pytest.raises(OSError):
+        Page(host, port, '/nowhere', 'demo_system')
