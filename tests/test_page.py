@@ -8,7 +8,8 @@ distribution's Chromium (``/usr/bin/chromium``, driven by Selenium through
 instance and connection of the model is drawn; a foreign type published on a
 connection's topic turns that connection's colour within 2 s of the manager
 seeing it, and back after the repair; a click shows an instance's parameter
-values; a change without the token is refused; instances brought down turn.
+values; a change without the token is refused; instances brought down turn;
+the page is live again once a manager is back on its port.
 With ``ROBMOSYS_SCREENSHOT=<file>`` the test saves what the browser shows
 (docs/page.png is made so).
 """
@@ -212,3 +213,15 @@ def test_the_page_draws_the_model_and_colours_it_with_what_runs(
                 'return g.classList.contains("state-inactive")', name) for name in managed)
         assert wait_until(all_down, timeout=30), manager.output()[-4000:]
         assert 'the page: bring_down asked by 127.0.0.1' in manager.output()
+
+    # the manager ends: the page says so, and is live again once it is back on its port
+    assert wait_until(lambda: browser.find_element('id', 'live').text == 'reconnecting',
+                      timeout=10)
+    port = base.rsplit(':', 1)[1]
+    with background([sys.executable, str(executable), '--web', port], env=env, cwd=built.root,
+                    stop_timeout=30) as manager:
+        assert wait_until(lambda: browser.find_element('id', 'live').text == 'live' and
+                          browser.execute_script(
+                              'return document.querySelector(`g.instance[data-instance='
+                              '"joints"]`).dataset.state') == 'active',
+                          timeout=120), manager.output()[-4000:]
