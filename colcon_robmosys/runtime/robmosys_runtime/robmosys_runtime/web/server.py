@@ -81,7 +81,9 @@ class Page:
         self.stopping = threading.Event()
         self.server = _Server((address, port), _Handler)
         self.server.page = self
-        host, port = self.server.server_address[:2]
+        # (host, port) of an AF_INET or AF_INET6 socket, the port the system gave for 0
+        bound: Any = self.server.server_address
+        host, port = bound[0], bound[1]
         shown = f'[{host}]' if ':' in host else host
         #: where the page is, with its token
         self.url = f'http://{shown}:{port}/?token={self.token}'
