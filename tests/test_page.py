@@ -21,6 +21,8 @@ import os
 from pathlib import Path
 import re
 import shutil
+import socket
+import subprocess
 import sys
 import time
 from typing import Iterator
@@ -48,9 +50,9 @@ def _browser_missing() -> str | None:
     return None
 
 
-pytestmark = [pytest.mark.integration, requires_ros,
-              pytest.mark.skipif(_browser_missing() is not None,
-                                 reason=_browser_missing() or '')]
+pytestmark = [pytest.mark.integration, requires_ros]
+needs_browser = pytest.mark.skipif(_browser_missing() is not None,
+                                   reason=_browser_missing() or '')
 
 SYSTEM = 'dummy_robot_bringup'
 #: how soon the page shows what the manager knows (the issue's bound)
@@ -110,6 +112,7 @@ def _status(browser, index: int) -> str | None:
         'return g ? g.dataset.status || null : null;', index)
 
 
+@needs_browser
 def test_the_page_draws_the_model_and_colours_it_with_what_runs(
         test_workspace_built, browser, tmp_path):
     built = test_workspace_built
@@ -225,3 +228,18 @@ def test_the_page_draws_the_model_and_colours_it_with_what_runs(
                               'return document.querySelector(`g.instance[data-instance='
                               '"joints"]`).dataset.state') == 'active',
                           timeout=120), manager.output()[-4000:]
+
+
+def test_a_port_in_use_is_one_line_and_nothing_starts(test_workspace_built):
+    built = test_workspace_built
+    executable = built.install / SYSTEM / 'lib' / SYSTEM / 'bringup'
+    with socket.socket() as taken:
+        taken.bind(('127.0.0.1', 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        result = subprocess.run([sys.executable, str(executable), '--web', str(port)],
+                                env=built.env(free_domain_id()), capture_output=True,
+                                text=True, timeout=60, cwd=built.root)
+    assert (result.returncode, result.stdout, result.stderr) == (
+        2, '', f'bringup: error: --web {port}: 127.0.0.1: Address already in use; '
+        'nothing was started\n')
