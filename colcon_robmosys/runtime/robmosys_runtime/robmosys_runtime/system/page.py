@@ -6,17 +6,17 @@ The manager's page (``bringup --web PORT``): bound before anything starts, serve
 :func:`open_page` binds the socket first, so that a port in use is one line
 and exit 2 with nothing started; :func:`serve_page` gives the page what the
 manager knows and what an operator may ask of it with the token: bring_up,
-bring_down, and the actions given as ``extra`` (modes: ``mode``, a callable of
-the request's JSON arguments that returns success and a message; the page
-shows the system's mode from :class:`~robmosys_runtime.web.view.Source`'s
-``mode``).
+bring_down, and the actions given as ``extra``. Modes, once they exist, give
+``extra={'mode': switch}`` (``switch({'mode': name})`` returns success and a
+message) and the view's :class:`~robmosys_runtime.web.view.Source` its
+``mode`` and ``modes``: the page then shows the mode and a button for each.
 """
 
 from __future__ import annotations
 
 import argparse
 from types import SimpleNamespace
-from typing import Any, Callable, Dict, Optional, Tuple
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 from robmosys_runtime.hosting.output import say
 from robmosys_runtime.web.server import Action, Page
@@ -40,11 +40,14 @@ def open_page(description: Dict[str, Any], args: argparse.Namespace) -> Optional
 
 
 def serve_page(page: Page, manager: Any, args: argparse.Namespace,
-               extra: Optional[Dict[str, Action]] = None) -> None:
+               extra: Optional[Dict[str, Action]] = None,
+               mode: Callable[[], Optional[str]] = lambda: None,
+               modes: Callable[[], List[str]] = lambda: []) -> None:
     """Serve the page of a manager (robmosys_runtime.system.manager.Manager)."""
     watch_on = getattr(args, 'check_period', 0.0) > 0
     source = Source(manager.description, manager.states, manager.activation.failures,
-                    lambda: manager.watch, lambda: manager.up, watch_on=watch_on)
+                    lambda: manager.watch, lambda: manager.up, mode=mode, watch_on=watch_on,
+                    modes=modes)
     period = min(args.check_period, MOST_PERIOD) if watch_on else MOST_PERIOD
     actions: Dict[str, Action] = {
         'bring_up': _trigger(manager._bring_up),  # noqa: SLF001 - the services' own answer

@@ -32,8 +32,16 @@ function paint(key) {
     document.getElementById('watch').textContent = 'watch: ' + entry.watch +
       (entry.up ? '' : ' (brought down)');
     const mode = document.getElementById('mode');
-    mode.hidden = entry.mode === null;
-    mode.textContent = 'mode: ' + entry.mode;
+    mode.hidden = entry.mode === null && !entry.modes.length;
+    mode.replaceChildren(element('span', 'mode: ' + (entry.mode === null ? 'none' : entry.mode)));
+    for (const name of entry.modes) {
+      const button = element('button', name);
+      button.type = 'button';
+      button.dataset.mode = name;
+      button.disabled = name === entry.mode;
+      button.addEventListener('click', () => act('mode', {mode: name}));
+      mode.appendChild(button);
+    }
     return;
   }
   const [kind, name] = [key.slice(0, 1), key.slice(2)];
@@ -148,13 +156,13 @@ function listen() {
   };
 }
 
-async function act(name) {
+async function act(name, arguments_ = {}) {
   const answer = document.getElementById('answer');
   answer.textContent = name.replace('_', ' ') + '...';
   try {
     const response = await fetch('action/' + name, {
       method: 'POST', headers: {'X-Robmosys-Token': token, 'Content-Type': 'application/json'},
-      body: '{}'});
+      body: JSON.stringify(arguments_)});
     const result = await response.json();
     answer.textContent = (response.status === 403 ? 'refused: ' : '') + result.message;
   } catch (error) {

@@ -22,6 +22,7 @@ import argparse
 import hmac
 from http import HTTPStatus
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+import ipaddress
 import json
 import os
 import secrets
@@ -85,6 +86,8 @@ class Page:
         bound: Any = self.server.server_address
         host, port = bound[0], bound[1]
         shown = f'[{host}]' if ':' in host else host
+        #: whether only this machine reaches it
+        self.loopback = ipaddress.ip_address(host).is_loopback
         #: where the page is, with its token
         self.url = f'http://{shown}:{port}/?token={self.token}'
 
@@ -159,9 +162,26 @@ class _Handler(BaseHTTPRequestHandler):
         if self.command != 'HEAD':
             self.wfile.write(body)
 
+    def _host_refused(self) -> bool:
+        """
+        Refuse a request to a page on loopback that names another host (403); tell if so.
+
+        A web site the browser visits may name its own host at this address (DNS
+        rebinding) and read the page: a browser sends the name it asked for.
+        """
+        if not self.server.page.loopback:
+            return False
+        host = urlsplit(f"//{self.headers.get('Host', '')}").hostname or ''
+        if host in ('127.0.0.1', 'localhost', '::1'):
+            return False
+        self.refuse(HTTPStatus.FORBIDDEN, f'a request for host {host!r} on 127.0.0.1')
+        return True
+
     def do_GET(self) -> None:  # noqa: N802 - the base's name
         page = self.server.page
         path = urlsplit(self.path).path
+        if self._host_refused():
+            return
         if path in FILES:
             name, content_type = FILES[path]
             with open(os.path.join(os.path.dirname(__file__), name), 'rb') as stream:
@@ -186,6 +206,8 @@ class _Handler(BaseHTTPRequestHandler):
     def do_POST(self) -> None:  # noqa: N802 - the base's name
         page = self.server.page
         parts = urlsplit(self.path)
+        if self._host_refused():
+            return
         token = self.headers.get('X-Robmosys-Token') or \
             parse_qs(parts.query).get('token', [''])[0]
         if not parts.path.startswith('/action/'):

@@ -33,7 +33,8 @@ class Source:
     def __init__(self, description: Dict[str, Any], states: Callable[[], Dict[str, str]],
                  failures: Callable[[], Dict[str, str]], watch: Callable[[], Any],
                  up: Callable[[], bool], mode: Callable[[], Optional[str]] = lambda: None,
-                 watch_on: bool = True) -> None:
+                 watch_on: bool = True,
+                 modes: Callable[[], List[str]] = lambda: []) -> None:
         self.description = description
         self.states = states
         self.failures = failures
@@ -42,6 +43,9 @@ class Source:
         self.up = up
         #: the mode the system is in, once modes exist (None: the system has none)
         self.mode = mode
+        #: the modes an operator may switch to: the page shows a button each, which
+        #: asks the action ``mode`` with ``{"mode": <name>}``
+        self.modes = modes
         self.watch_on = watch_on
 
 
@@ -88,7 +92,8 @@ def entries(source: Source) -> Dict[str, Any]:
     else:
         watching = 'ready' if watch.ready else 'comparing'
     found['system'] = {'package': description['package'], 'up': bool(source.up()),
-                       'mode': source.mode(), 'watch': watching}
+                       'mode': source.mode(), 'modes': list(source.modes()),
+                       'watch': watching}
     return found
 
 

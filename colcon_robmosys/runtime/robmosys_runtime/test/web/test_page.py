@@ -82,6 +82,13 @@ def test_a_change_needs_the_token(page, capsys):
     assert out.out.count('the page refused 127.0.0.1: POST /action/bring_down: 403') == 2
 
 
+def test_a_request_naming_another_host_is_refused(page, capsys):
+    # a site of the browser's that names its own host at this address (DNS rebinding)
+    assert _request(page, 'GET', '/state', {'Host': 'evil.example:80'})[0] == 403
+    assert _request(page, 'GET', '/state', {'Host': 'localhost:1'})[0] == 200
+    assert 'refused 127.0.0.1: GET /state: 403' in capsys.readouterr().out
+
+
 def test_what_is_not_understood_is_4xx_and_one_line(page, capsys):
     for method, path, headers, body, status in (
             ('GET', '/nothing', {}, None, 404),
@@ -107,7 +114,7 @@ def test_the_page_its_diagram_and_the_state_are_served(page):
     assert state['i:talker']['parameters'] == [['rate', 2.0, 5.0, 'm.yaml:4:9']]
     assert state['c:0']['status'] == 'conforms'
     assert state['system'] == {'package': 'demo_system', 'up': True, 'mode': None,
-                               'watch': 'ready'}
+                               'modes': [], 'watch': 'ready'}
 
 
 def test_the_events_send_everything_then_only_what_changed(page):
