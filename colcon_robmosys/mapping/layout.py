@@ -37,6 +37,8 @@ GAP = 24
 PAD = 16
 GROUP_TITLE = 22
 EXTERNAL_WIDTH = 200
+#: room left of the first column for a connection that comes back to it (a cycle)
+BACK = 48
 
 
 @dataclass(frozen=True)
@@ -154,7 +156,10 @@ def lay_out(system: System, components: dict[str, Component],
     for instance in sorted(instances, key=lambda i: hosts[i.name] != ''):
         subsystem = instance.name.rpartition('.')[0]
         order.setdefault(hosts[instance.name], {}).setdefault(subsystem, []).append(instance)
-    width = 4 * PAD + max(column.values(), default=0) * COLUMN + BOX_WIDTH
+    width = 4 * PAD + BACK + max(column.values(), default=0) * COLUMN + BOX_WIDTH
+    # names outside the model stand left of the hosts where data comes from them,
+    # right where it goes to them
+    left = EXTERNAL_WIDTH + PAD if any(not e.source_port for e in edges) else 0
     groups: list[LaidGroup] = []
     laid: dict[str, LaidInstance] = {}
     y = PAD
@@ -170,7 +175,7 @@ def lay_out(system: System, components: dict[str, Component],
             bottoms: dict[int, int] = {}
             row_top = y + PAD
             for instance in members:
-                x = 2 * PAD + column[instance.name] * COLUMN
+                x = left + 2 * PAD + BACK + column[instance.name] * COLUMN
                 at = bottoms.get(column[instance.name], row_top)
                 height = HEADER + PORT_ROW * len(instance.ports) + 6
                 ports = tuple(LaidPort(p.name, p.role, p.pattern,
@@ -183,25 +188,27 @@ def lay_out(system: System, components: dict[str, Component],
             y = max(bottoms.values(), default=row_top) + PAD // 2
             if subsystem:
                 groups.append(LaidGroup('subsystem', subsystem,
-                                        Box(PAD + 4, top, width - 2 * PAD - 8, y - top)))
+                                        Box(left + PAD + 4, top, width - 2 * PAD - 8,
+                                            y - top)))
                 y += PAD // 2
         groups.insert(host_index, LaidGroup(
             'host', f'host {host}' if host else "the manager's host",
-            Box(PAD - 8, host_top, width - 2 * PAD + 16, y - host_top)))
+            Box(left + PAD - 8, host_top, width - 2 * PAD + 16, y - host_top)))
         y += GAP
     connections = []
     labelled: set[tuple[str, str]] = set()
     externals: dict[str, Box] = {}
-    ext_x = width + PAD
-    ext_y = PAD + GROUP_TITLE
+    #: the next place of a name outside the model: (x, y) on each side
+    lanes = {True: [PAD, PAD + GROUP_TITLE], False: [left + width + PAD, PAD + GROUP_TITLE]}
     for index, (edge, connection) in enumerate(zip(edges, system.connections)):
         ends = []
         for end, port, leaving in ((edge.source, edge.source_port, True),
                                    (edge.target, edge.target_port, False)):
             if not port:
                 if end not in externals:
-                    externals[end] = Box(ext_x, ext_y, EXTERNAL_WIDTH, 24)
-                    ext_y += 40
+                    lane = lanes[leaving]
+                    externals[end] = Box(lane[0], lane[1], EXTERNAL_WIDTH, 24)
+                    lane[1] += 40
                 box = externals[end]
                 ends.append((box.x + (box.w if leaving else 0), box.y + 12))
                 continue
@@ -209,7 +216,9 @@ def lay_out(system: System, components: dict[str, Component],
             row = next(p.y for p in instance.ports if p.name == port)
             ends.append((instance.box.x + (instance.box.w if leaving else 0), row))
         (x1, y1), (x2, y2) = ends
-        bend = max(60, abs(x2 - x1) // 2)
+        # forwards: an S as wide as the gap; backwards (a cycle), out of the source's
+        # side and into the target's, in the room left and right of the columns
+        bend = max(60, (x2 - x1) // 2) if x2 > x1 else BACK + 16
         path = f'M{x1},{y1} C{x1 + bend},{y1} {x2 - bend},{y2} {x2},{y2}'
         provided = provided_end(connection, components)
         kind, _, name = edge.label.partition('\\n')
@@ -220,7 +229,8 @@ def lay_out(system: System, components: dict[str, Component],
             pattern, name, _qos_text(components[provided.instance], provided.port),
             type_name, path, x1 + 8, y1 - 4, (edge.source, edge.source_port) not in labelled))
         labelled.add((edge.source, edge.source_port))
-    total_width = ext_x + EXTERNAL_WIDTH + PAD if externals else width + PAD
-    height = max(y, ext_y) + PAD
+    right = any(box.x > left for box in externals.values())
+    total_width = left + width + PAD + (EXTERNAL_WIDTH + PAD if right else 0)
+    height = max(y, lanes[True][1], lanes[False][1]) + PAD
     return Layout(total_width, height, tuple(groups), tuple(laid[i.name] for i in instances),
                   tuple(connections), tuple(externals.items()))
