@@ -156,7 +156,10 @@ def lay_out(system: System, components: dict[str, Component],
     for instance in sorted(instances, key=lambda i: hosts[i.name] != ''):
         subsystem = instance.name.rpartition('.')[0]
         order.setdefault(hosts[instance.name], {}).setdefault(subsystem, []).append(instance)
-    width = 4 * PAD + BACK + max(column.values(), default=0) * COLUMN + BOX_WIDTH
+    # room for connections that come back to an earlier column, where there are any
+    back = BACK if any(column.get(e.target, 1 << 30) <= column.get(e.source, -1)
+                       for e in edges) else 0
+    width = 4 * PAD + back + max(column.values(), default=0) * COLUMN + BOX_WIDTH
     # names outside the model stand left of the hosts where data comes from them,
     # right where it goes to them
     left = EXTERNAL_WIDTH + PAD if any(not e.source_port for e in edges) else 0
@@ -175,7 +178,7 @@ def lay_out(system: System, components: dict[str, Component],
             bottoms: dict[int, int] = {}
             row_top = y + PAD
             for instance in members:
-                x = left + 2 * PAD + BACK + column[instance.name] * COLUMN
+                x = left + 2 * PAD + back + column[instance.name] * COLUMN
                 at = bottoms.get(column[instance.name], row_top)
                 height = HEADER + PORT_ROW * len(instance.ports) + 6
                 ports = tuple(LaidPort(p.name, p.role, p.pattern,
