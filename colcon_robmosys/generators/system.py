@@ -28,6 +28,7 @@ LAUNCH_FILES = (
 FILES = (
     Row(PARAMS_FILE, 'system/params.yaml.jinja'),
     Row('{diagram}', 'system/diagram.dot.jinja'),
+    Row('{svg}', 'system/diagram.svg.jinja'),
     Row('bringup.json', 'system/bringup.json.jinja'),
     Row('bringup', 'system/bringup.jinja', executable=True),
     Row('check_params', 'system/check_params.jinja', executable=True),

@@ -38,6 +38,7 @@ from robmosys_runtime.tools.arguments import (
     any_given, ArgumentError, ARGUMENTS, log_level, moved_description, node_values,
     normalized_namespace, ros_args_only, sim_time, temporary, without_ros_args, written)
 from robmosys_runtime.tools.locations import resolve_locations
+from robmosys_runtime.web.server import add_options as add_web_options
 
 
 def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
@@ -168,6 +169,7 @@ def options(description_file: str) -> argparse.ArgumentParser:
     parser.add_argument('--namespace', default='', help=ARGUMENTS['namespace'][1])
     parser.add_argument('--params-file', default='', metavar='FILE',
                         help=ARGUMENTS['params_file'][1])
+    add_web_options(parser)
     parser.add_argument('--description', default=description_file, help=argparse.SUPPRESS)
     return parser
 

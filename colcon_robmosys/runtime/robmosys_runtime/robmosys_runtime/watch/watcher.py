@@ -222,6 +222,10 @@ class Watch:
             except Exception as error:  # noqa: B902 - the watch goes on
                 say('error', f'the conformance watch failed: {type(error).__name__}: {error}')
 
+    def parameter_values(self) -> Dict[str, Dict[str, Any]]:
+        """Return the parameter values seen at run time, by node (the manager's page)."""
+        return self._listener.values()
+
     def by_subject(self) -> Dict[str, List[Difference]]:
         """Return the current differences by status (``instance <n>``, ``connection <i>``)."""
         subjects: Dict[str, List[Difference]] = {}
