@@ -215,9 +215,9 @@ def lay_out(system: System, components: dict[str, Component],
                 box = externals[end]
                 ends.append((box.x + (box.w if leaving else 0), box.y + 12))
                 continue
-            instance = laid[end]
-            row = next(p.y for p in instance.ports if p.name == port)
-            ends.append((instance.box.x + (instance.box.w if leaving else 0), row))
+            placed = laid[end]
+            row = next(p.y for p in placed.ports if p.name == port)
+            ends.append((placed.box.x + (placed.box.w if leaving else 0), row))
         (x1, y1), (x2, y2) = ends
         # forwards: an S as wide as the gap; backwards (a cycle), out of the source's
         # side and into the target's, in the room left and right of the columns
