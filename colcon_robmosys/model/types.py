@@ -28,8 +28,9 @@ __all__ = [
     'Action', 'Activity', 'CommunicationObject', 'Component', 'Connection',
     'Constant', 'Event', 'Field', 'FieldType', 'Function', 'Instance',
     'Executor', 'InterfaceKind', 'InterfaceRef', 'Language', 'LIFECYCLE_TRANSITIONS',
-    'Maintainer', 'Mode', 'Model', 'model_key', 'ModeValues', 'ModelFile', 'PackageInfo', 'Parameter',
-    'ParameterRange', 'ParameterSize', 'ParameterValue', 'Pattern', 'PATTERN_INTERFACE',
+    'Maintainer', 'Mode', 'Model', 'model_key', 'ModeValues', 'ModelFile', 'PackageInfo',
+    'Parameter', 'ParameterRange', 'ParameterSize', 'ParameterValue', 'Pattern',
+    'PATTERN_INTERFACE',
     'Port', 'PortRef', 'QoS', 'QoSOverride', 'Query', 'Role',
     'ServiceDefinition', 'Structure', 'Subsystem', 'System', 'Workspace',
 ]
