@@ -120,6 +120,9 @@ def run_manager(description: Dict[str, Any], args: argparse.Namespace,
     executor.add_node(node)
     spinner = threading.Thread(target=serve, args=(executor,), daemon=True)
     spinner.start()
+    if description.get('modes'):
+        # imported here: a system without modes needs none of it
+        from robmosys_runtime.system.moded import ModedManager as Manager  # noqa: N814
     manager = Manager(node, description, params_file, args, processes, told=started.told,
                       groups={} if args.attach else plan_processes(
                           local, args.description, params_file, shared=args.processes))
@@ -133,7 +136,9 @@ def run_manager(description: Dict[str, Any], args: argparse.Namespace,
         if not signalled.is_set():
             outcome = manager.activation.wait()
             if not printed or not outcome.ok:
-                print(report(outcome, len(manager.managed)), flush=True)
+                # those the mode leaves inactive are not counted
+                total = len(manager.managed) - len(manager.activation.held)
+                print(report(outcome, total), flush=True)
             if not outcome.ok:
                 status = 1
                 if args.exit_on_failure:
