@@ -22,8 +22,7 @@ def _generated(tmp_path: Path, package: str) -> Path:
 
 
 def test_the_manager_reads_each_mode_whole(tmp_path):
-    """Every active instance, in activation order; every moded value, the system's where the
-    mode sets none."""
+    """Every active instance, in activation order; the system's value where a mode sets none."""
     description = json.loads((_generated(tmp_path, 'modes_robot') / 'bringup.json').read_text())
     assert description['initial_mode'] == 'docking'
     modes = {m['name']: m for m in description['modes']}

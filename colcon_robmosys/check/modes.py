@@ -127,13 +127,13 @@ def _check_after(ctx: CheckContext, system: System, mode: Mode, active: set[str]
             if port is not None and port.role is Role.REQUIRED:
                 providers.setdefault((ref.instance, ref.port), []).extend(
                     r.instance for r in roles if r is not ref)
-    for (name, port), serving in providers.items():
-        instance = system.instance(name)
-        if name not in active or instance is None or port in instance.unconnected:
+    for (name, port_name), serving in providers.items():
+        needing = system.instance(name)
+        if name not in active or needing is None or port_name in needing.unconnected:
             continue
         if not any(s in active or _always_on(components.get(s)) for s in serving):
             ctx.warning(system.package, mode.active_location(name),
-                        f"mode '{mode.name}': required port '{name}.{port}' is served by "
+                        f"mode '{mode.name}': required port '{name}.{port_name}' is served by "
                         f"{', '.join(sorted(set(serving)))}, which the mode leaves inactive")
 
 
