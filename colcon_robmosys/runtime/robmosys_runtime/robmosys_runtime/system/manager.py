@@ -162,7 +162,7 @@ class Manager:
         self.watch: Optional[Watch] = None
         # the node spins already: its services and timer come last, once every
         # attribute they read is set (a report asked for at once is answered)
-        self._diagnostics = node.create_publisher(DiagnosticArray, '/diagnostics', 10)
+        self._diagnostics: Any = node.create_publisher(DiagnosticArray, '/diagnostics', 10)
         group = MutuallyExclusiveCallbackGroup()
         for service, answer in (('bring_up', self._bring_up), ('bring_down', self._bring_down),
                                 ('report', self._report), ('conformance', self._conformance)):
