@@ -31,8 +31,8 @@ from launch.substitutions import LaunchConfiguration, SubstitutionFailure
 from robmosys_runtime.hosting.processes import CPP_GROUP
 from robmosys_runtime.hosting.told import told_file
 from robmosys_runtime.tools.arguments import (
-    ArgumentError, ARGUMENTS, chosen_mode, LOG_LEVELS, moved, moved_description, normalized_namespace,
-    parameters_file, sim_time, temporary)
+    ArgumentError, ARGUMENTS, chosen_mode, LOG_LEVELS, moved, moved_description,
+    normalized_namespace, parameters_file, sim_time, temporary)
 from robmosys_runtime.tools.paramcheck import check_operator_file
 
 

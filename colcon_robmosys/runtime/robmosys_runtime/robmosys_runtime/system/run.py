@@ -120,12 +120,14 @@ def run_manager(description: Dict[str, Any], args: argparse.Namespace,
     executor.add_node(node)
     spinner = threading.Thread(target=serve, args=(executor,), daemon=True)
     spinner.start()
+    kind = Manager
     if description.get('modes'):
         # imported here: a system without modes needs none of it
-        from robmosys_runtime.system.moded import ModedManager as Manager  # noqa: N814
-    manager = Manager(node, description, params_file, args, processes, told=started.told,
-                      groups={} if args.attach else plan_processes(
-                          local, args.description, params_file, shared=args.processes))
+        from robmosys_runtime.system.moded import ModedManager
+        kind = ModedManager
+    manager = kind(node, description, params_file, args, processes, told=started.told,
+                   groups={} if args.attach else plan_processes(
+                       local, args.description, params_file, shared=args.processes))
     if signalled.is_set():
         manager.stopping.set()
     status = 0

@@ -102,7 +102,7 @@ def chosen_mode(description: Dict[str, Any], text: Optional[str]) -> str:
     if value and not modes:
         raise ArgumentError(f'mode {text!r}: the system has no modes')
     if value and value not in modes:
-        raise ArgumentError(f"mode {text!r}: the system has no such mode (its modes: "
+        raise ArgumentError(f'mode {text!r}: the system has no such mode (its modes: '
                             f"{', '.join(modes)})")
     return value or description.get('initial_mode', '')
 
