@@ -47,3 +47,9 @@ def test_the_page_of_the_modes(tmp_path):
     assert '| `docking` | driver, arm.talker |  |' in page
     assert '| `driver` | `rate` | 2 | 100 | 10 |' in page
     assert 'set_mode/NAME' in page
+
+
+def test_the_diagram_names_the_modes_of_each_instance(tmp_path):
+    dot = (_generated(tmp_path, 'modes_robot') / 'doc' / 'modes_robot.dot').read_text()
+    assert '/base/driver\\nTalker (demo_talker)\\nactive in: docking, cruising|' in dot
+    assert '/spare\\nListener (demo_listener)\\nactive in: no mode|' in dot
