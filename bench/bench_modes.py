@@ -7,17 +7,20 @@ test_workspace/install; six Python instances, three modes, a subsystem with two)
 under ``ros2 run mode_robot_system bringup`` (watch off), and times, in the same
 run and alternating them, ``--rounds`` times each:
 
-- ``manager``: ``~/set_mode/cruising`` then ``~/set_mode/docking``, each from the
-  request to its answer;
+- ``manager``: ``~/set_mode/<B>`` then ``~/set_mode/<A>`` (``--modes A B``, default
+  cruising and mapping: the largest switch of the model, 8 steps each way), each from
+  the request to its answer;
 - ``direct``: the same steps made from this process with rclpy, as a user would
   without the manager: ``change_state`` of each instance the manager deactivates
-  and activates, in its order, and one ``set_parameters`` per node with the same
-  values, each step waiting for its answer, clients made and matched beforehand.
+  and activates, in its order, each waiting for its answer, and one
+  ``set_parameters`` per node with the same values, every node's at once, as the
+  manager sends them; clients made and matched beforehand.
 
 The direct steps are those the manager's answers listed, so both do the same
-transitions and calls; both end in docking, so the manager's view stays true.
-Prints the fastest of each, their spread and the ratio manager / direct (goal of
-issue 42: at most 1.2x), "met" or "NOT met".
+transitions and calls; both end in A, so the manager's view stays true. Prints the
+fastest of each, their spread and the ratio manager / direct (goal of issue 42: at
+most 1.2x), "met" or "NOT met", and for scale the round trip of a call of the
+manager that does nothing much (``~/report``), which every switch pays once.
 
     .venv/bin/python bench/bench_modes.py
 """
@@ -73,21 +76,26 @@ class Direct:
         from lifecycle_msgs.srv import ChangeState
         from rcl_interfaces.srv import SetParameters
         from rclpy.parameter import Parameter
-        for step in steps:
+        setting = []
+        for step in steps + ['']:
             verb, _, rest = step.partition(' ')
+            if verb == 'set':
+                name, _, names = rest.partition(': ')
+                setting.append(self.set[name].call_async(SetParameters.Request(parameters=[
+                    Parameter(p, value=values[name][p]).to_parameter_msg()
+                    for p in names.split(', ')])))
+                continue
+            # the values of several nodes at once, as the manager sets them
+            for future in setting:
+                self.executor.spin_until_future_complete(future, timeout_sec=30)
+                assert all(r.successful for r in future.result().results), steps
+            setting = []
             if verb in ('activate', 'deactivate'):
                 request = ChangeState.Request()
                 request.transition = Transition(id=Transition.TRANSITION_ACTIVATE if
                                                 verb == 'activate' else
                                                 Transition.TRANSITION_DEACTIVATE)
                 assert self.call(self.change[rest], request).success, step
-            elif verb == 'set':
-                name, _, names = rest.partition(': ')
-                request = SetParameters.Request(parameters=[
-                    Parameter(p, value=values[name][p]).to_parameter_msg()
-                    for p in names.split(', ')])
-                answer = self.call(self.set[name], request)
-                assert all(r.successful for r in answer.results), step
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -95,6 +103,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--install', type=Path, default=ROOT / 'test_workspace' / 'install')
     parser.add_argument('--rounds', type=int, default=10)
+    parser.add_argument('--modes', nargs=2, default=['cruising', 'mapping'], metavar='MODE')
     args = parser.parse_args(argv)
     print_machine('bench_modes: a mode switch vs its steps made directly with rclpy')
     share = args.install / SYSTEM / 'share' / SYSTEM
@@ -114,7 +123,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     node = rclpy.create_node('bench_modes')
     executor = SingleThreadedExecutor()
     executor.add_node(node)
-    manager, direct = [], []
+    manager, direct, call = [], [], []
+    first, second = args.modes
     try:
         line = ''
         while 'managed instances active' not in line:
@@ -122,7 +132,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             if not line and bringup.poll() is not None:
                 raise RuntimeError('bringup ended before the system was up')
         switch = {m: node.create_client(Trigger, f'/{SYSTEM}_bringup/set_mode/{m}')
-                  for m in ('cruising', 'docking')}
+                  for m in args.modes}
+        switch['report'] = node.create_client(Trigger, f'/{SYSTEM}_bringup/report')
         for client in switch.values():
             assert client.wait_for_service(timeout_sec=30)
         hand = Direct(node, executor, description)
@@ -135,26 +146,31 @@ def main(argv: Sequence[str] | None = None) -> int:
             return took, answer.message.splitlines()[:-1]
 
         # the steps, as the manager makes them (the first switch also matches its clients)
-        _, there = set_mode('cruising')
-        _, back = set_mode('docking')
+        set_mode(first)
+        _, there = set_mode(second)
+        _, back = set_mode(first)
         for _ in range(args.rounds):
-            took = [set_mode('cruising')[0], set_mode('docking')[0]]
+            took = [set_mode(second)[0], set_mode(first)[0]]
             manager.append(sum(took))
             time.sleep(0.3)
             start = time.perf_counter()
-            hand.run(there, modes['cruising']['values'])
-            hand.run(back, modes['docking']['values'])
+            hand.run(there, modes[second]['values'])
+            hand.run(back, modes[first]['values'])
             direct.append(time.perf_counter() - start)
             time.sleep(0.3)
+            start = time.perf_counter()
+            hand.call(switch['report'], Trigger.Request())
+            call.append(time.perf_counter() - start)
     finally:
         node.destroy_node()
         rclpy.try_shutdown()
         os.killpg(bringup.pid, signal.SIGINT)
         bringup.wait(timeout=60)
     print(f'steps there: {there}\nsteps back: {back}')
-    print(table(['path', 'docking -> cruising -> docking (s)', 'spread'], [
+    print(table(['path', f'{first} -> {second} -> {first} (s)', 'spread'], [
         ['manager (~/set_mode)', f'{best(manager):.4f}', spread(manager)],
-        ['direct (rclpy)', f'{best(direct):.4f}', spread(direct)]]))
+        ['direct (rclpy)', f'{best(direct):.4f}', spread(direct)],
+        ['(a call of ~/report)', f'{best(call):.4f}', spread(call)]]))
     met = best(manager) <= GOAL * best(direct)
     print(f'manager / direct: {ratio(best(manager), best(direct))} (goal: at most {GOAL}x): '
           f"{'met' if met else 'NOT met'}")

@@ -47,7 +47,7 @@ class ModedManager(Manager):
         # they answer as for a system without modes (see _made)
         self._made = False
         super().__init__(node, description, params_file, args, *rest, **kwargs)
-        self.modes = Modes(description, self.activation,
+        self.modes = Modes(node, description, self.activation,
                            args.mode or description['initial_mode'], say)
         # reentrant: a switch asked for during another is answered (refused) at once
         group = ReentrantCallbackGroup()

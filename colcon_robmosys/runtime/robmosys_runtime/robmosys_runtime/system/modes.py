@@ -23,9 +23,11 @@ from typing import Any, Callable, Dict, List, Optional, Tuple
 
 from lifecycle_msgs.msg import Transition
 from rcl_interfaces.srv import SetParameters
+from rclpy.node import Node
 from rclpy.parameter import Parameter
 from robmosys_runtime.system.activation import SystemActivation
 from robmosys_runtime.system.lifecycle_calls import Failed, Stopped
+from robmosys_runtime.system.switching import SwitchCalls
 
 #: the model's type of a parameter -> rclpy's, for the values a switch sets
 _TYPES = {'bool': Parameter.Type.BOOL, 'int': Parameter.Type.INTEGER,
@@ -59,8 +61,8 @@ class Modes:
     :param report: called with ``(level, text)``
     """
 
-    def __init__(self, description: Dict[str, Any], activation: SystemActivation, mode: str,
-                 report: Callable[[str, str], None]) -> None:
+    def __init__(self, node: Node, description: Dict[str, Any], activation: SystemActivation,
+                 mode: str, report: Callable[[str, str], None]) -> None:
         self.modes = {m['name']: m for m in description['modes']}
         self._activation = activation
         self._report = report
@@ -78,6 +80,10 @@ class Modes:
         self.switching = ''
         #: why the last switch did not end in its mode ('' when it did)
         self.problem = ''
+        self._node = node
+        self._fqns = {i['instance']: i['fqn'] for i in instances}
+        #: the clients of the switches, made at the first (see switching.py)
+        self._calls: Optional[SwitchCalls] = None
         self._lock = threading.Lock()
         activation.held = set(managed) - set(self.modes[mode]['active'])
         activation.configured = self._configured
@@ -145,12 +151,20 @@ class Modes:
                 self._change(name, Transition.TRANSITION_DEACTIVATE, 'inactive')
                 activation.held.add(name)
                 steps.append(f'deactivate {name}')
+        changes = {}
         for name in self._order:
             values = self.modes[target]['values'].get(name, {})
             changed = {p: v for p, v in values.items() if self._held.get(name, {}).get(p) != v}
             if changed:
-                self._set_values(name, changed)
-                steps.append(f"set {name}: {', '.join(sorted(changed))}")
+                changes[name] = changed
+        # the nodes' values are independent of each other: every node is asked at once
+        answers = self._switch_calls().set_values({name: self._request(name, changed) for
+                                                   name, changed in changes.items()},
+                                                  max(map(activation.calls.timeout_of,
+                                                          changes), default=0.0))
+        for name, changed in changes.items():
+            self._took(name, changed, answers[name])
+            steps.append(f"set {name}: {', '.join(sorted(changed))}")
         # then what it adds, in the model's order (its list is in activation order)
         for name in wanted:
             activation.held.discard(name)
@@ -159,10 +173,30 @@ class Modes:
                 steps.append(f'activate {name}')
         activation.held = set(activation.held) - set(wanted)
 
+    def _switch_calls(self) -> SwitchCalls:
+        """Return the calls of a switch, made at the first."""
+        if self._calls is None:
+            self._calls = SwitchCalls(self._node, self._fqns)
+        return self._calls
+
+    def close(self) -> None:
+        """Destroy what the switches made (before the manager's node goes)."""
+        if self._calls is not None:
+            self._calls.close()
+
+    def _state_of(self, name: str) -> Optional[str]:
+        """Return the state an instance tells within a second, None if it does not."""
+        try:
+            return self._activation.calls.get_state(name, timeout=1.0, failed_too=True)
+        except (Failed, Stopped):
+            return None
+
     def _change(self, name: str, transition: int, goal: str) -> None:
         """Take an instance through a transition; a failure names it and marks it failed."""
         try:
-            state = self._activation.calls.change(name, transition)
+            state = self._switch_calls().change(name, transition,
+                                                self._activation.calls.timeout_of(name),
+                                                lambda: self._state_of(name))
         except Failed as failure:
             self._activation.instance_failed(name, str(failure), report=False)
             raise Failed(f'instance {name} {failure}') from None
@@ -170,24 +204,33 @@ class Modes:
         if state != goal:
             raise Failed(f'instance {name} is {state}, not {goal}')
 
+    def _request(self, name: str, values: Dict[str, Any]) -> Any:
+        """Return the set_parameters request of values of an instance, typed as declared."""
+        return SetParameters.Request(parameters=[
+            parameter_message(n, v, self._types.get(name, {}).get(n)) for n, v in values.items()])
+
     def _set_values(self, name: str, values: Dict[str, Any]) -> None:
         """Set values of one node in one call of its set_parameters; raise if one is refused."""
         calls = self._activation.calls
         wait = calls.timeout_of(name)
         client = calls.client(name, SetParameters, 'set_parameters', wait)
-        request = SetParameters.Request(parameters=[
-            parameter_message(n, v, self._types.get(name, {}).get(n)) for n, v in values.items()])
+        request = self._request(name, values)
         deadline = time.monotonic() + wait
         attempt = 0.25
         while True:
             # an answer lost while the service's two directions match: asked again
             # (setting the same values twice changes nothing)
             answer = calls.call(client, request, min(attempt, deadline - time.monotonic()))
-            if answer is not None:
+            if answer is not None or time.monotonic() >= deadline:
                 break
-            if time.monotonic() >= deadline:
-                raise Failed(f'instance {name} did not answer set_parameters within {wait:g} s')
             attempt = min(2 * attempt, 2.0)
+        self._took(name, values, answer)
+
+    def _took(self, name: str, values: Dict[str, Any], answer: Any) -> None:
+        """Keep the values an instance took; raise if it did not answer or refused one."""
+        if answer is None:
+            wait = self._activation.calls.timeout_of(name)
+            raise Failed(f'instance {name} did not answer set_parameters within {wait:g} s')
         refused = [f'{n} = {v!r}: {r.reason}' for (n, v), r in zip(values.items(), answer.results)
                    if not r.successful]
         done = {n: v for (n, v), r in zip(values.items(), answer.results) if r.successful}

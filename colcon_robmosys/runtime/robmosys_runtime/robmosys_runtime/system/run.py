@@ -162,6 +162,8 @@ def run_manager(description: Dict[str, Any], args: argparse.Namespace,
             os.close(started.steps)
         # nothing makes clients on the node any more, before it goes
         manager.activation.close()
+        if getattr(manager, 'modes', None) is not None:
+            manager.modes.close()  # type: ignore[attr-defined]  # a ModedManager's
         executor.shutdown()
         # a thread still in rcl when the process ends aborts it ("terminate called
         # without an active exception"): the spinning thread ends first
