@@ -200,7 +200,8 @@ RUNTIME_ROOMS = {
     'tools': {COMPONENT_SIDE},
     'hosting': {COMPONENT_SIDE},
     'watch': {COMPONENT_SIDE, 'hosting'},
-    'system': {COMPONENT_SIDE, 'tools', 'hosting', 'watch'},
+    'web': {COMPONENT_SIDE, 'hosting', 'watch'},
+    'system': {COMPONENT_SIDE, 'tools', 'hosting', 'watch', 'web'},
 }
 MAX_FOLDER_MODULES = 15
 

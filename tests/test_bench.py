@@ -26,6 +26,7 @@ import bench_colcon  # noqa: E402
 import bench_cppbuild  # noqa: E402
 import bench_generation  # noqa: E402
 import bench_messages  # noqa: E402
+import bench_page  # noqa: E402
 import bench_runtime  # noqa: E402
 import bench_watch  # noqa: E402
 from colcon_robmosys.check import find_model_files, load_workspace  # noqa: E402
@@ -189,6 +190,18 @@ def test_watch_benchmark_prints_the_cost_of_the_watch(capsys):
                          re.MULTILINE), out
     else:
         assert 'hosts: not measured: ' in out, out
+
+
+@requires_ros
+def test_page_benchmark_prints_the_cost_of_the_page(capsys):
+    """The page's own work, and the manager's CPU with the page and its clients and without."""
+    assert bench_page.main(['--size', '2', '--clients', '1', '--rounds', '1', '--settle', '1',
+                            '--window', '1', '--timeout', '90', '--periods', '20']) == 0
+    out = capsys.readouterr().out
+    assert re.search(r"^the page's work, 2 instances, 1 clients, .*: \d+\.\d{3} % of one CPU "
+                     r'\((met|NOT met)', out, re.MULTILINE), out
+    assert len(re.findall(r'round 1, (page|none): \d+\.\d\d % of one CPU', out)) == 2, out
+    assert re.search(r'^\| 2 +(\| -?\d+\.\d\d +){3}\| (met|NOT met)', out, re.MULTILINE), out
 
 
 @requires_ros

@@ -221,7 +221,26 @@ def test_the_watch_adds_nothing_to_the_base_station_link(site):
     assert on - off <= WATCH_BUDGET, (off, on)
     # and the watch sees the stream: no difference
     assert _ask(site, conformance) == '', site.output()
+    # the robot's watch reads when the camera last sent, kept by the camera
+    # itself: the viewer is the stream's only subscription, on the robot too
+    topic = site.description['connections'][0]['name']
+    assert json.loads(site.on_robot(SUBSCRIPTIONS, topic).splitlines()[-1]) == \
+        [_fqn(site, 'viewer')], site.output()
     assert_no_traceback(manager.output())
+
+
+#: prints the nodes of a topic's subscriptions, once the graph shows its publisher
+SUBSCRIPTIONS = """
+import json, sys, time, rclpy
+rclpy.init()
+node = rclpy.create_node('site_graph')
+deadline = time.monotonic() + 20
+while not node.get_publishers_info_by_topic(sys.argv[1]) and time.monotonic() < deadline:
+    time.sleep(0.1)
+time.sleep(2.0)  # the other endpoints of the participants it found
+print(json.dumps(sorted(f"{i.node_namespace.rstrip('/')}/{i.node_name}"
+                        for i in node.get_subscriptions_info_by_topic(sys.argv[1]))))
+"""
 
 
 def _ask(site: Site, service: str) -> str:

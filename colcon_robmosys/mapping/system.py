@@ -22,6 +22,7 @@ from colcon_robmosys.mapping.diagram import (
 from colcon_robmosys.mapping.executors import shared_executors
 from colcon_robmosys.mapping.launch import (
     launch_files, LaunchFile, PARAMS_FILE, process_layout, SystemNode)
+from colcon_robmosys.mapping.layout import lay_out, Layout
 from colcon_robmosys.mapping.modes import ModePlan, plan_modes
 from colcon_robmosys.mapping.names import connection_name
 from colcon_robmosys.mapping.parameters import NODE_PARAMETERS
@@ -76,11 +77,18 @@ class SystemPackage:
     #: its modes, whole (mapping/modes.py), and the one it starts in
     modes: tuple[ModePlan, ...] = ()
     initial_mode: str = ''
+    #: the drawing of the system (doc/<package>.svg), which the manager's page shows too
+    layout: Layout | None = None
 
     @property
     def has_modes(self) -> bool:
         """Tell whether the system has modes (and a page of them, doc/modes.md)."""
         return bool(self.modes)
+
+    @property
+    def svg(self) -> str:
+        """Return the path of the drawing, beside the DOT file."""
+        return self.diagram.removesuffix('.dot') + '.svg'
 
     @property
     def bringup_description(self) -> str:
@@ -298,13 +306,15 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
     watched = watched_instances(system, components, topics)
     connections = system_connections(system, components, topics)
     modes = plan_modes(system, workspace, components, (n.instance for n in nodes), watched)
+    instances = diagram_instances(system, components)
+    edges = diagram_edges(system, components, topics)
     return SystemPackage(
         banner=banner, package=system.package, name=system.name, nodes=nodes,
         launch_files=launch_files(system, nodes, banner),
         params=_parameters(system, components, topics),
         diagram=f'doc/{system.package}.dot',
-        instances=diagram_instances(system, components),
-        edges=diagram_edges(system, components, topics),
+        instances=instances, edges=edges,
+        layout=lay_out(system, components, instances, edges),
         connections=connections,
         processes=process_layout(system),
         watched=watched,

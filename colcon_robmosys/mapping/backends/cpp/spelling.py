@@ -67,7 +67,8 @@ def _row(entity: Entity, member_type: str, runtime_header: str = '') -> tuple[En
 
 #: entity -> its row, one per entity
 ENTITIES = dict((
-    _row(Entity.PUBLISHER, 'rclcpp_lifecycle::LifecyclePublisher<{type}>::SharedPtr'),
+    _row(Entity.PUBLISHER, 'robmosys_runtime::CountedPublisher<{type}>::SharedPtr',
+         'robmosys_runtime/sends.hpp'),
     _row(Entity.SUBSCRIPTION, 'rclcpp::Subscription<{type}>::SharedPtr'),
     _row(Entity.SERVICE, 'rclcpp::Service<{type}>::SharedPtr'),
     _row(Entity.CLIENT, 'std::shared_ptr<ports::QueryClient<{type}>>',

@@ -25,6 +25,7 @@ from robmosys_runtime.announce import announce_component
 from robmosys_runtime.events import EventClient, EventServer
 from robmosys_runtime.ports import ActionClientPort, ActionServer, QueryClient
 from robmosys_runtime.qos import overridable
+from robmosys_runtime.sends import count_sends
 from robmosys_runtime.transitions import guard_transitions, TRANSITION_VERBS
 
 Function = Callable[..., Any]
@@ -79,6 +80,7 @@ class ComponentNode(LifecycleNode):
     def add_publisher(self, name: str, msg_type: Any, qos: QoSProfile) -> Any:
         """Create a lifecycle publisher (a provided push or a required send port)."""
         entity = self.create_lifecycle_publisher(msg_type, name, **overridable(qos))
+        count_sends(entity)
         return self._keep(name, entity, lambda: self.destroy_lifecycle_publisher(entity))
 
     def add_subscription(self, name: str, msg_type: Any, qos: QoSProfile,

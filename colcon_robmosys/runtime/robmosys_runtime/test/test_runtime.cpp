@@ -1,9 +1,15 @@
 // Copyright 2026 The colcon-robmosys authors
 // Licensed under the Apache License, Version 2.0
 
+#include <stdlib.h>
+
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -27,6 +33,7 @@
 #include "robmosys_runtime/main.hpp"
 #include "robmosys_runtime/parameters.hpp"
 #include "robmosys_runtime/query_client.hpp"
+#include "robmosys_runtime/sends.hpp"
 
 using namespace std::chrono_literals;
 using Fibonacci = test_msgs::action::Fibonacci;
@@ -177,7 +184,7 @@ public:
 
   std::atomic<bool> fail_configure{false};
   std::atomic<int> count{0};
-  std::shared_ptr<rclcpp_lifecycle::LifecyclePublisher<std_msgs::msg::Int32>> pCount;
+  robmosys_runtime::CountedPublisher<std_msgs::msg::Int32>::SharedPtr pCount;
   rclcpp::Service<BasicTypes>::SharedPtr qDouble;
   rclcpp::Subscription<std_msgs::msg::Int32>::SharedPtr sCount;
   std::atomic<int> received{0};
@@ -185,7 +192,7 @@ public:
 protected:
   void create_ports() override
   {
-    keep_publisher(pCount, create_publisher<std_msgs::msg::Int32>("pCount", 10));
+    keep_publisher(pCount, create_counted_publisher<std_msgs::msg::Int32>("pCount", 10, {}));
     rclcpp::SubscriptionOptions options;
     options.callback_group = activity("Answer");
     keep(
@@ -406,6 +413,46 @@ void component_ports_live_from_configure_to_cleanup()
   runtime.stop();
 }
 
+/// Return the time in a send file of a topic in a directory, 0 if none, -1 if no file.
+std::int64_t last_send(const std::string & directory, const std::string & topic)
+{
+  const std::string prefix = robmosys_runtime::topic_key(topic) + "-";
+  std::int64_t last = -1;
+  for (const auto & entry : std::filesystem::directory_iterator(directory)) {
+    if (entry.path().filename().string().rfind(prefix, 0) == 0) {
+      std::ifstream file(entry.path(), std::ios::binary);
+      std::int64_t value = 0;
+      file.read(reinterpret_cast<char *>(&value), sizeof(value));
+      last = std::max(last, value);
+    }
+  }
+  return last;
+}
+
+void a_port_keeps_the_time_of_its_last_send_where_bringup_asks()
+{
+  // the key of a topic is the one robmosys_runtime/sends.py computes
+  EXPECT(robmosys_runtime::topic_key("a") == "af63dc4c8601ec8c");
+  char pattern[] = "/tmp/robmosys-sends-test-XXXXXX";
+  const std::string directory = ::mkdtemp(pattern);
+  ::setenv("ROBMOSYS_SENDS", directory.c_str(), 1);
+  Runtime runtime;
+  auto node = std::make_shared<Counter>();
+  runtime.spin(node);
+  runtime.start();
+  node->configure();
+  ::unsetenv("ROBMOSYS_SENDS");
+  EXPECT(last_send(directory, "/pCount") == 0);  // a file, nothing sent while inactive
+  const auto before = std::chrono::steady_clock::now().time_since_epoch();
+  node->activate();
+  EXPECT(wait_until([&node]() {return node->count >= 2;}));
+  EXPECT(last_send(directory, "/pCount") >= std::chrono::nanoseconds(before).count());
+  node->deactivate();
+  node->cleanup();
+  runtime.stop();
+  std::filesystem::remove_all(directory);
+}
+
 void queries_are_answered_while_active_only()
 {
   Runtime runtime;
@@ -480,7 +527,8 @@ int main()
     an_activation_made_before_the_server_is_there_is_sent_once_it_is,
     an_activation_its_server_ended_is_ended_without_its_result,
     component_ports_live_from_configure_to_cleanup, queries_are_answered_while_active_only,
-    a_throwing_hook_fails_its_transition, mapped_entries_are_checked_as_the_model_checks_them})
+    a_throwing_hook_fails_its_transition, mapped_entries_are_checked_as_the_model_checks_them,
+    a_port_keeps_the_time_of_its_last_send_where_bringup_asks})
   {
     try {
       test();

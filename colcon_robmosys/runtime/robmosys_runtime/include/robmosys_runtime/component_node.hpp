@@ -23,6 +23,7 @@
 #include "rclcpp/rclcpp.hpp"
 #include "rclcpp_lifecycle/lifecycle_node.hpp"
 #include "rclcpp_lifecycle/managed_entity.hpp"
+#include "robmosys_runtime/sends.hpp"
 
 // declared only: action_server.hpp, which a component with an action server
 // includes, defines ComponentNode::create_action_server with rclcpp_action's
@@ -190,6 +191,15 @@ protected:
     rclcpp::SubscriptionOptions options;
     options.qos_overriding_options = qos_overriding_options();
     return options;
+  }
+
+  /// Create the lifecycle publisher of a port: it keeps the time of its last send.
+  template<typename MessageT>
+  typename CountedPublisher<MessageT>::SharedPtr create_counted_publisher(
+    const std::string & topic, const rclcpp::QoS & qos, const rclcpp::PublisherOptions & options)
+  {
+    return rclcpp::create_publisher<MessageT, std::allocator<void>, CountedPublisher<MessageT>>(
+      *this, topic, qos, options);
   }
 
   /// Assign a lifecycle publisher: it publishes while the node is active.

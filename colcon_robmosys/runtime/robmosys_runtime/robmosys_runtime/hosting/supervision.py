@@ -12,7 +12,9 @@ it hangs (SIGABRT) before it is killed.
 from __future__ import annotations
 
 import os
+from pathlib import Path
 import queue
+import shutil
 import signal
 import subprocess
 import sys
@@ -23,6 +25,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Set
 from robmosys_runtime.hosting.output import say
 from robmosys_runtime.hosting.processes import NotInstalled
 from robmosys_runtime.hosting.running import look, MARK, wait_gone
+from robmosys_runtime.sends import send_directory, SENDS
 
 #: seconds each process has to end after SIGINT, before SIGABRT and SIGKILL
 STOP_TIMEOUT = 10.0
@@ -75,11 +78,19 @@ class Processes:
     :param mark: the value of :data:`~robmosys_runtime.hosting.running.MARK`
         in each process's environment (:func:`~robmosys_runtime.hosting.running.mark`):
         a ``bringup`` started again finds what this one left
+    :param sends: whether the components keep the time of their sends
+        (:mod:`robmosys_runtime.sends`) for the watch, in a directory of this
+        object's (:attr:`sends`), removed by :meth:`stop`
     """
 
-    def __init__(self, on_exit: Any, end_with_parent: bool = False, mark: str = '') -> None:
+    def __init__(self, on_exit: Any, end_with_parent: bool = False, mark: str = '',
+                 sends: bool = False) -> None:
         self._preexec = _ending_with_parent() if end_with_parent else None
         self._environment = {MARK: mark} if mark else {}
+        #: the directory of the send files, if they are kept
+        self.sends: Optional[Path] = send_directory() if sends else None
+        if self.sends is not None:
+            self._environment[SENDS] = str(self.sends)
         #: what the starting thread runs, each with where its outcome goes
         self._starts: Optional[queue.Queue[Any]] = None
         if self._preexec is not None:
@@ -197,6 +208,8 @@ class Processes:
                        min(ABORT_GRACE, deadline - time.monotonic()))
         if late:
             self.kill()
+        if self.sends is not None:
+            shutil.rmtree(self.sends, ignore_errors=True)
         return not late
 
     @staticmethod

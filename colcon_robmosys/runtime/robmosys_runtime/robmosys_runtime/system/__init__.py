@@ -12,7 +12,9 @@ The system manager: a system started, brought up, served and brought down.
 - :mod:`.drift`: instances seen out of ``active`` outside the manager's
   transitions (their transition events, the heartbeat), and back;
 - :mod:`.heartbeat`: every managed instance asked its state, in step;
-- :mod:`.launching`: what the launch files of a system give every node.
+- :mod:`.launching`: what the launch files of a system give every node;
+- :mod:`.page`: the manager's page (``--web``), bound before anything
+  starts, given what the manager knows and its actions.
 
 May import: every other room. Imported by: the generated system packages
 (their ``bringup`` executable and launch files); by nothing of the runtime.

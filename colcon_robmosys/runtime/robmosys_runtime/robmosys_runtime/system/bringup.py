@@ -38,6 +38,7 @@ from robmosys_runtime.tools.arguments import (
     any_given, ArgumentError, ARGUMENTS, chosen_mode, log_level, moved_description, node_values,
     normalized_namespace, ros_args_only, sim_time, temporary, without_ros_args, written)
 from robmosys_runtime.tools.locations import resolve_locations
+from robmosys_runtime.web.server import add_options as add_web_options
 
 
 def main(description_file: str, argv: Optional[Sequence[str]] = None) -> int:
@@ -170,6 +171,7 @@ def options(description_file: str) -> argparse.ArgumentParser:
                         help=ARGUMENTS['params_file'][1])
     parser.add_argument('--mode', default='', metavar='NAME', help=ARGUMENTS['mode'][1] + (
         '; with --check: the mode to compare with (default: the one the system is in)'))
+    add_web_options(parser)
     parser.add_argument('--description', default=description_file, help=argparse.SUPPRESS)
     return parser
 

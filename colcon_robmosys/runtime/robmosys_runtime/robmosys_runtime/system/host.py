@@ -13,9 +13,10 @@ from __future__ import annotations
 import argparse
 import contextlib
 import os
+from pathlib import Path
 import signal
 import threading
-from typing import Any, Dict, Iterator
+from typing import AbstractSet, Any, Dict, Iterator, Optional
 
 from robmosys_runtime.hosting.output import say
 from robmosys_runtime.hosting.processes import Groups, NotInstalled, plan_processes
@@ -49,7 +50,8 @@ def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file:
 
     # the instances end with this bringup, even killed, and carry its mark
     processes = Processes(exited, end_with_parent=True, mark=mark(
-        description['package'], description.get('namespace') or '', args.host))
+        description['package'], description.get('namespace') or '', args.host),
+        sends=args.check_period > 0)
 
     def start(group: str) -> None:
         processes.start(group, groups[group][1])
@@ -81,7 +83,7 @@ def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file:
         started = sorted(n for names, _ in groups.values() for n in names)
         if started:
             say('info', f"host {args.host}: started {', '.join(started)}")
-        with host_watch(description, args, stopping):
+        with host_watch(description, args, stopping, processes.sends, set(started)):
             while not stopping.wait(0.5):
                 pass
     finally:
@@ -92,24 +94,29 @@ def run_host(description: Dict[str, Any], args: argparse.Namespace, params_file:
 
 @contextlib.contextmanager
 def host_watch(description: Dict[str, Any], args: argparse.Namespace,
-               stopping: threading.Event) -> Iterator[None]:
+               stopping: threading.Event, sends: Optional[Path] = None,
+               started: AbstractSet[str] = frozenset()) -> Iterator[None]:
     """
     Watch the push ports of this host's instances for the manager, in a with block.
 
     Only where the watch is on (``--check-period``) and the host has such
-    ports: it listens to them here and sends the manager a summary each check
-    period (:class:`~robmosys_runtime.watch.hosts.HostSummary`), on a node
+    ports: it reads when they last sent (those of the instances it started,
+    which keep the time of their sends in ``sends``) or listens to them here,
+    and sends the manager a summary each check period
+    (:class:`~robmosys_runtime.watch.hosts.HostSummary`), on a node
     ``<system>_<host>_bringup``.
     """
     from robmosys_runtime.watch.conformance import Model
     from robmosys_runtime.watch.hosts import names_of, summary_topic, watched_names
-    names = names_of(watched_names(Model(description)), args.host)
+    model = Model(description)
+    names = names_of(watched_names(model), args.host)
     if args.check_period <= 0 or not names:
         yield
         return
     import rclpy
     from rclpy.signals import SignalHandlerOptions
-    from robmosys_runtime.watch.hosts import HostSummary
+    from robmosys_runtime.sends import Sends
+    from robmosys_runtime.watch.hosts import counted_names, HostSummary
     context = rclpy.Context()
     # SIGINT and SIGTERM stay this bringup's: it ends its processes first
     rclpy.init(context=context, args=['--ros-args', *description.get('ros_arguments', ())],
@@ -117,7 +124,8 @@ def host_watch(description: Dict[str, Any], args: argparse.Namespace,
     node = rclpy.create_node(f"{description['package']}_{args.host}_bringup",
                              namespace=description.get('namespace') or None, context=context)
     summary = HostSummary(node, names, summary_topic(description), args.host,
-                          args.check_period)
+                          args.check_period, Sends(sends) if sends else None,
+                          counted_names(model, names, started))
     thread = threading.Thread(target=summary.run, args=(stopping,), daemon=True,
                               name='host watch')
     thread.start()

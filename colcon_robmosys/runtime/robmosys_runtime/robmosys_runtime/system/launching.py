@@ -191,6 +191,14 @@ class SystemParameters(Substitution):
         return _FILES[key]
 
 
+#: the launch arguments of the manager's launch files alone: name -> (default, description)
+MANAGER_ARGUMENTS = {
+    'web': ('', 'a port where the system manager serves a page of the running system '
+            '(0: any free one; empty: no page); it prints the address with its token'),
+    'web_address': ('127.0.0.1', 'the address the page listens on'),
+}
+
+
 class SystemArguments:
     """The launch arguments of a system, and what each node action is given of them."""
 
@@ -217,7 +225,11 @@ class SystemArguments:
         self.bringup = Program(package, 'bringup')
         #: the system manager's options of the same meaning, one argument each
         self.manager: List[Any] = [[f"--{name.replace('_', '-')}=", LaunchConfiguration(name)]
-                                   for name in ARGUMENTS]
+                                   for name in [*ARGUMENTS, *MANAGER_ARGUMENTS]]
+        #: the arguments of the manager's launch files alone (bringup --web)
+        self.manager_declarations: List[Any] = [
+            DeclareLaunchArgument(name, default_value=default, description=description)
+            for name, (default, description) in MANAGER_ARGUMENTS.items()]
         self._told_file: Optional[str] = None
 
     @property

@@ -3,10 +3,9 @@
 """
 The system manager: the processes of a system, their bring-up, what operators see.
 
-:class:`Manager` starts the instances a system package describes
-(``bringup.json``), brings the managed ones up with
-:class:`~robmosys_runtime.system.activation.SystemActivation`, and offers operators
-services and ``/diagnostics``; ``ros2 run <system> bringup``
+:class:`Manager` starts the instances a system package describes (``bringup.json``),
+brings the managed ones up with :class:`~robmosys_runtime.system.activation.SystemActivation`,
+and offers operators services and ``/diagnostics``; ``ros2 run <system> bringup``
 (:mod:`robmosys_runtime.system.bringup`) runs it in the foreground.
 """
 
@@ -26,6 +25,7 @@ from robmosys_runtime.hosting.output import say
 from robmosys_runtime.hosting.processes import Groups, plan_processes, shared_python
 from robmosys_runtime.hosting.reports import GRACE, Reports
 from robmosys_runtime.hosting.supervision import Processes
+from robmosys_runtime.sends import Sends
 from robmosys_runtime.system.activation import SystemActivation
 from robmosys_runtime.system.drift import Drift
 from robmosys_runtime.system.heartbeat import Heartbeat
@@ -207,15 +207,13 @@ class Manager:
             self.drift.follow(self.node, self.managed, self.stopping)
 
     def _watch(self) -> None:
-        """
-        Make the conformance watch once the bring-up is over, and run it.
-
-        Until it is made, ``~/conformance`` answers that the system was not compared yet.
-        """
+        """Make the conformance watch once up, and run it (~/conformance: not compared yet)."""
         if not self._brought_up():
             return
+        sends = self.processes.sends  # where the instances it started count their sends
         watch = Watch(self.node, self.description, period=self._args.check_period,
-                      silence=self._args.silence)
+                      silence=self._args.silence, sends=Sends(sends) if sends else None,
+                      started=set(self._group_of))
         self.watch = watch
         watch.run(self.stopping, lambda: self.drift.states_for_watch(self.states()),
                   lambda: self.up and not self.activation.running())

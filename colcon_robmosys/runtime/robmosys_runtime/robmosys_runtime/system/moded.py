@@ -22,12 +22,14 @@ list`` shows the modes, and a mode the model lacks has no service to call.
 from __future__ import annotations
 
 import argparse
-from typing import Any, Dict
+from types import SimpleNamespace
+from typing import Any, Dict, Tuple
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.node import Node
 from robmosys_runtime.hosting.output import say
+from robmosys_runtime.sends import Sends
 from robmosys_runtime.system.manager import guarded, Manager
 from robmosys_runtime.system.modes import Modes
 from robmosys_runtime.watch.watcher import Watch
@@ -68,7 +70,8 @@ class ModedManager(Manager):
         elif not self.up:
             refuse = 'the system is brought down (~/bring_up first)'
         watch = self.watch
-        if watch is not None and not refuse and not self.modes.switching:
+        if watch is not None and not refuse and not self.modes.switching and \
+                name in self.modes.modes:
             # the values it sets are the new mode's from the first (and if it stops
             # halfway, the system is still meant to be in it)
             watch.expect(name, set(self.managed) - set(self.modes.active(name)),
@@ -78,12 +81,23 @@ class ModedManager(Manager):
             self._expect(watch)
         return response
 
+    def page_hooks(self) -> Dict[str, Any]:
+        """Return what the page (system/page.py's serve_page) shows of the modes, and asks."""
+        def switch(arguments: Dict[str, Any]) -> Tuple[bool, str]:
+            answer = self._set_mode(str(arguments.get('mode', '')),
+                                    SimpleNamespace(success=False, message=''))
+            return bool(answer.success), str(answer.message)
+        return {'extra': {'mode': switch}, 'mode': lambda: self.modes.mode,
+                'modes': lambda: list(self.modes.modes)}
+
     def _watch(self) -> None:
         """Make the conformance watch once the bring-up is over; it compares with the mode."""
         if not self._brought_up():
             return
+        sends = self.processes.sends  # as Manager._watch makes it
         watch = Watch(self.node, self.description, period=self._args.check_period,
-                      silence=self._args.silence)
+                      silence=self._args.silence, sends=Sends(sends) if sends else None,
+                      started=set(self._group_of))
         self._expect(watch)
         self.watch = watch
         watch.run(self.stopping, lambda: self.drift.states_for_watch(self.states()),

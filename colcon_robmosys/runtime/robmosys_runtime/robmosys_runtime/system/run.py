@@ -25,6 +25,7 @@ from robmosys_runtime.hosting.supervision import before_start, not_installed, Pr
 from robmosys_runtime.hosting.told import (
     bringing_itself_down, read_steps, read_told, read_told_file, tellers, tells_all, told_file)
 from robmosys_runtime.system.levels import Outcome, report
+from robmosys_runtime.system.page import open_page, serve_page
 
 # rclpy is imported once the instances are starting: they start it too, in
 # parallel (see run_manager)
@@ -51,7 +52,8 @@ def run_manager(description: Dict[str, Any], args: argparse.Namespace,
     # with the manager, even killed, and carry its mark: a manager started
     # again finds what this one left
     processes = Processes(on_exit=None, end_with_parent=True, mark=mark(
-        description['package'], description.get('namespace') or '', ''))
+        description['package'], description.get('namespace') or '', ''),
+        sends=args.check_period > 0 and not args.attach)
     signalled = threading.Event()
     manager: Optional[Any] = None
 
@@ -66,6 +68,13 @@ def run_manager(description: Dict[str, Any], args: argparse.Namespace,
 
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, on_signal)
+    try:
+        # bound before anything starts: a port in use is one line, nothing started
+        page = open_page(description, args)
+    except OSError as error:
+        say('error', f'--web {args.web}: {args.web_address}: {error.strerror or error}; '
+            'nothing was started')
+        return 2
     # the processes of this host are planned from it: an instance whose node
     # runs already is no process of this host's (before_start)
     local = description
@@ -132,6 +141,9 @@ def run_manager(description: Dict[str, Any], args: argparse.Namespace,
         manager.stopping.set()
     status = 0
     try:
+        if page is not None:
+            # a system with modes: the mode shown, a button for each (ModedManager)
+            serve_page(page, manager, args, **getattr(manager, 'page_hooks', dict)())
         manager.start()
         while manager.activation.running() and not signalled.wait(0.02):
             pass
@@ -157,6 +169,8 @@ def run_manager(description: Dict[str, Any], args: argparse.Namespace,
             for step in manager.activation.bring_down(timeout=min(args.timeout, 10.0)):
                 print(f'bringup: {step}', flush=True)
     finally:
+        if page is not None:
+            page.close()
         ended = manager.processes.stop()
         if started.steps is not None:
             os.close(started.steps)

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import importlib
 import time
-from typing import Any, List, Optional, Set, Tuple
+from typing import Any, Dict, List, Optional, Set, Tuple
 
 from rclpy.node import Node
 from robmosys_runtime.watch.conformance import Endpoint, Graph, Model
@@ -47,9 +47,13 @@ _FEEDBACK = '/_action/feedback'
 UNKNOWN_NODE = '_NODE_NAMESPACE_UNKNOWN_/_NODE_NAME_UNKNOWN_'
 #: a topic every ROS node publishes on: its writers name every node
 _EVERY_NODE = '/parameter_events'
-#: reads in a row that find ends without a node's name before the reader
-#: reads through a participant made anew
-UNNAMED_READS = 2
+#: seconds an end stays without its node's name before the reader reads
+#: through a participant made anew: a participant just made (a tool started on
+#: the manager's host) shows its ends a moment before its names, and one made
+#: anew for it would be one more participant in the manager for good, which
+#: discovers the whole site again (half as much again on the base station's link
+#: of the fleet test, and its CPU)
+RENEW_AFTER = 4.0
 
 
 class GraphReader:
@@ -64,9 +68,9 @@ class GraphReader:
     nodes. Meanwhile the graph shows the other's ends with no node's name
     (:data:`UNKNOWN_NODE`) and leaves its nodes out; a participant made afresh
     sees them all. A read with such ends is *incomplete* (``Graph.complete``,
-    no ground for a difference); after :data:`UNNAMED_READS` of them in a row
-    the reader reads through a participant of its own, made anew (one more
-    on its host, from then on), whose reads are incomplete for ``settle``
+    no ground for a difference); once an end stayed so for :data:`RENEW_AFTER`
+    seconds the reader reads through a participant of its own, made anew (one
+    more on its host, from then on), whose reads are incomplete for ``settle``
     seconds, while it discovers the graph. An end that it cannot name either
     (the writer of a DDS application that is no ROS node) is taken as it is.
     """
@@ -79,7 +83,8 @@ class GraphReader:
         self._settle = settle
         #: when the reader's own participant was made, until a read after its settle
         self._fresh: Optional[float] = None
-        self._unnamed_reads = 0
+        #: GID -> when it was first read without its node's name
+        self._unnamed_since: Dict[Tuple[int, ...], float] = {}
         #: the ends a participant made afresh could not name either
         self._nameless: Set[Tuple[int, ...]] = set()
         self._model = model
@@ -115,16 +120,16 @@ class GraphReader:
         ends = [*(e for ends in graph.endpoints.values() for e in ends),
                 *self._topic_ends(_EVERY_NODE, 'writer', 'reader')]
         unnamed = {e.gid for e in ends if e.node == UNKNOWN_NODE} - self._nameless
+        self._unnamed_since = {g: self._unnamed_since.get(g, now) for g in unnamed}
         if not unnamed:
-            self._unnamed_reads = 0
             return True
         if settled:
             # a participant that discovered the graph afresh cannot name them either
             self._nameless |= unnamed
+            self._unnamed_since.clear()
             return True
-        self._unnamed_reads += 1
-        if self._unnamed_reads >= UNNAMED_READS:
-            self._unnamed_reads = 0
+        if now - min(self._unnamed_since.values()) >= RENEW_AFTER:
+            self._unnamed_since.clear()
             self._renew(now)
         return False
 

@@ -20,10 +20,11 @@ from __future__ import annotations
 
 import threading
 import time
-from typing import Any, Dict, List, Optional, Set, Tuple
+from typing import AbstractSet, Any, Dict, Iterable, Optional, Set, Tuple
 
 from rclpy.node import Node
 from rclpy.qos import QoSProfile, ReliabilityPolicy
+from robmosys_runtime.sends import Sends
 from robmosys_runtime.watch.conformance import Model
 from robmosys_runtime.watch.graph import interface
 
@@ -66,6 +67,26 @@ def summary_topic(description: Dict[str, Any]) -> str:
     return f"{namespace}/{description['package']}_bringup/hosts"
 
 
+def counted_names(model: Model, names: Iterable[str], started: AbstractSet[str]) -> Set[str]:
+    """
+    Return the names whose every publisher the model has is a generated instance started here.
+
+    Those count their own sends (:mod:`robmosys_runtime.sends`) in the send
+    files of the bringup that started them (started: its instances): the
+    watch reads the files and needs no copy of their messages. A name that an
+    external component publishes too is listened to.
+    """
+    writers: Dict[str, Set[str]] = {}
+    for name, instance in model.instances.items():
+        for port in instance.get('ports', ()):
+            if port.get('entity') == 'publisher':
+                writers.setdefault(port['name'], set()).add(name)
+    counting = {n for n in started
+                if model.instances.get(n, {}).get('python_class') or
+                model.instances.get(n, {}).get('plugin')}
+    return {n for n in names if writers.get(n) and writers[n] <= counting}
+
+
 class Taker:
     """
     Raw subscriptions to watched topics, on a node of their own that no executor spins.
@@ -74,33 +95,84 @@ class Taker:
     best-effort subscription of depth 1 keeps only the latest, raw). An
     executor would wake up and run Python for every message: 13 % of a CPU
     for 10 topics at 10 Hz (bench_watch.py), where a take per topic and check
-    costs next to nothing.
+    costs next to nothing. The node is made with the first subscription.
     """
 
-    def __init__(self, node: Node, names: Dict[str, str], node_name: str) -> None:
-        import rclpy
-        self._taken: List[Any] = []
-        # a name of its own: the context's ROS arguments (a __node remapping of
-        # the process) are the first node's, not this one's
-        self.node = rclpy.create_node(
-            node_name, namespace=node.get_namespace(), context=node.context,
-            start_parameter_services=False, enable_rosout=False, use_global_arguments=False)
-        node.context.on_shutdown(self.node.destroy_node)
+    def __init__(self, node: Node, node_name: str) -> None:
+        self._parent = node
+        self._node_name = node_name
+        self.node: Optional[Node] = None
+        #: name -> its subscription
+        self._taken: Dict[str, Any] = {}
+        self.fqn = f"{node.get_namespace().rstrip('/')}/{node_name}"
+
+    def listen(self, names: Dict[str, str]) -> None:
+        """Subscribe to names (name -> type) and to no other."""
+        for name in [n for n in self._taken if n not in names]:
+            assert self.node is not None
+            self.node.destroy_subscription(self._taken.pop(name))
         for name, type_name in sorted(names.items()):
+            if name in self._taken:
+                continue
             try:
                 msg_type = interface(type_name)
             except (ImportError, AttributeError, ValueError):
                 continue
-            subscription = self.node.create_subscription(
+            self._taken[name] = self._own_node().create_subscription(
                 msg_type, name, lambda message: None, _LISTEN, raw=True)
-            self._taken.append((name, subscription))
+
+    def _own_node(self) -> Node:
+        if self.node is None:
+            import rclpy
+            # a name of its own: the context's ROS arguments (a __node remapping
+            # of the process) are the first node's, not this one's
+            self.node = rclpy.create_node(
+                self._node_name, namespace=self._parent.get_namespace(),
+                context=self._parent.context, start_parameter_services=False,
+                enable_rosout=False, use_global_arguments=False)
+            self._parent.context.on_shutdown(self.node.destroy_node)
+        return self.node
 
     def take(self, heard: Dict[str, float]) -> None:
         """Note in heard which topics carried a message since the last take."""
         now = time.monotonic()
-        for name, subscription in self._taken:
+        for name, subscription in list(self._taken.items()):
             if subscription.handle.take_message(subscription.msg_type, True) is not None:
                 heard[name] = now
+
+
+class Hearing:
+    """
+    When the watched names of one host last carried a message.
+
+    The names that count their sends (:func:`counted_names`) are read from
+    the send files; the others, and a counted one whose publishers keep no
+    file (a component built before they did), are listened to by a
+    :class:`Taker`.
+
+    :param names: name -> type of the names of this host
+    :param sends: the send files of this host's instances, if they keep them
+    :param counted: the names whose publishers all count their sends
+    """
+
+    def __init__(self, node: Node, names: Dict[str, str], node_name: str,
+                 sends: Optional[Sends] = None, counted: AbstractSet[str] = frozenset()) -> None:
+        self.names = names
+        self._sends = sends
+        self._counted = set(counted) if sends is not None else set()
+        self.taker = Taker(node, node_name)
+        self.taker.listen({n: t for n, t in names.items() if n not in self._counted})
+
+    def take(self, heard: Dict[str, float]) -> None:
+        """Note in heard when each name last carried a message, as far as known."""
+        if self._counted:
+            assert self._sends is not None
+            kept = self._sends.latest(self._counted)
+            for name, last in kept.items():
+                if last is not None and last > heard.get(name, 0.0):
+                    heard[name] = last
+            self.taker.listen({n: t for n, t in self.names.items() if n not in kept})
+        self.taker.take(heard)
 
 
 class HostSummary:
@@ -111,15 +183,18 @@ class HostSummary:
     :param names: name -> type of the ports it listens to (:func:`names_of`)
     :param topic: the topic of the summaries (:func:`summary_topic`)
     :param host: the host, as the model names it
+    :param sends: the send files of the host's instances, and the names they
+        tell (:class:`Hearing`)
     """
 
     def __init__(self, node: Node, names: Dict[str, str], topic: str, host: str,
-                 period: float) -> None:
+                 period: float, sends: Optional[Sends] = None,
+                 counted: AbstractSet[str] = frozenset()) -> None:
         from diagnostic_msgs.msg import DiagnosticStatus
         self.host = host
         self.period = period
         self.names = names
-        self._taker = Taker(node, names, f'{node.get_name()}_watch')
+        self._hearing = Hearing(node, names, f'{node.get_name()}_watch', sends, counted)
         self._publisher = node.create_publisher(DiagnosticStatus, topic, _SUMMARIES)
         self._started = time.monotonic()
         self.heard: Dict[str, float] = {}
@@ -127,7 +202,7 @@ class HostSummary:
     def send(self) -> None:
         """Take what the watched topics carried, and tell the manager."""
         from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
-        self._taker.take(self.heard)
+        self._hearing.take(self.heard)
         now = time.monotonic()
         # how long ago each carried a message ('' never, since the host's watch began)
         values = [KeyValue(key='since', value=f'{now - self._started:.3f}')] + [

@@ -6,7 +6,8 @@ The conformance watch: the system manager holds the running system to its model.
 Every check period, :class:`Watch` reads the ROS graph once for the names of
 the model (each end's node, type and QoS), keeps the parameter values
 ``/parameter_events`` tells, notes when the push ports of periodic activities
-last carried a message (a raw subscription each: no message is deserialized),
+last carried a message (from the send times the instances keep, or a raw
+subscription each: no message is deserialized),
 and compares (:func:`robmosys_runtime.watch.conformance.compare`). Each difference
 is reported once when it appears and once when it clears, at the model's
 line. :mod:`robmosys_runtime.watch.check` does the same once, for ``bringup --check``.
@@ -16,37 +17,41 @@ from __future__ import annotations
 
 import threading
 import time
-from typing import Any, Callable, Dict, Iterable, List, Optional
+from typing import AbstractSet, Any, Callable, Dict, Iterable, List, Optional
 
 from rclpy.node import Node
 from rclpy.qos import qos_profile_parameter_events
+from robmosys_runtime.sends import Sends
 from robmosys_runtime.watch.conformance import compare, Difference, Model, State
 from robmosys_runtime.watch.graph import GraphReader
 from robmosys_runtime.watch.hosts import (
-    names_of, Summaries, summary_topic, Taker, watched_names)
+    counted_names, Hearing, names_of, Summaries, summary_topic, watched_names)
 
 
 class Listener:
     """
     When each watched name last carried a message, and the parameters nodes tell.
 
-    The manager listens to the watched push ports of the instances of its own
-    host (:class:`~robmosys_runtime.watch.hosts.Taker`, each check); each
+    The manager reads when the instances of its own host last sent on the
+    watched push ports, or listens to them (:class:`~robmosys_runtime.watch.hosts.Hearing`,
+    each check); each
     other host's ``bringup --host`` to its own, and tells how long ago each
     carried a message (:class:`~robmosys_runtime.watch.hosts.Summaries`).
     """
 
     def __init__(self, node: Node, model: Model, description: Dict[str, Any],
-                 period: float) -> None:
+                 period: float, sends: Optional[Sends] = None,
+                 started: AbstractSet[str] = frozenset()) -> None:
         self.heard: Dict[str, float] = {}
         self.parameters: Dict[str, Dict[str, Any]] = {}
         self._lock = threading.Lock()
         watched = watched_names(model)
         self.names = {n: t for n, (t, _) in watched.items()}
         local = names_of(watched, '')
-        self._taker = Taker(node, local, f'{node.get_name()}_watch') if local else None
+        self._hearing = Hearing(node, local, f'{node.get_name()}_watch', sends,
+                                counted_names(model, local, started)) if local else None
         #: the node of the watched topics, if any ('' otherwise)
-        self.node_name = self._taker.node.get_fully_qualified_name() if self._taker else ''
+        self.node_name = self._hearing.taker.fqn if self._hearing else ''
         self._summaries = Summaries(node, watched, summary_topic(description), period,
                                     self.heard)
         from rcl_interfaces.msg import ParameterEvent
@@ -56,8 +61,8 @@ class Listener:
 
     def take(self) -> None:
         """Note which watched topics of this host carried a message since the last take."""
-        if self._taker is not None:
-            self._taker.take(self.heard)
+        if self._hearing is not None:
+            self._hearing.take(self.heard)
 
     def tells(self, name: str) -> bool:
         """Tell whether the silence of a watched name is known here and now."""
@@ -95,12 +100,14 @@ class Watch:
     found it: a false alarm costs more than one check period of delay.
 
     :param report: called with each difference that appears (True) or clears (False)
+    :param sends: the send files of the instances this process started (started)
     """
 
     def __init__(self, node: Node, description: Dict[str, Any], *, period: float,
                  silence: float,
                  report: Optional[Callable[[Difference, bool], None]] = None,
-                 grace: Optional[float] = None, confirm: int = 2) -> None:
+                 grace: Optional[float] = None, confirm: int = 2,
+                 sends: Optional[Sends] = None, started: AbstractSet[str] = frozenset()) -> None:
         self.period = period
         self.silence = silence
         self.grace = max(2 * period, 3.0) if grace is None else grace
@@ -114,7 +121,7 @@ class Watch:
         self._reader = GraphReader(node, self.model)
         #: instances whose parameters were read since they came up
         self._read: set = set()
-        self._listener = Listener(node, self.model, description, period)
+        self._listener = Listener(node, self.model, description, period, sends, started)
         if self._listener.node_name:
             self.model.nodes.add(self._listener.node_name)
         self._report = report or _say
@@ -238,6 +245,10 @@ class Watch:
                 self.check(states(), settled())
             except Exception as error:  # noqa: B902 - the watch goes on
                 say('error', f'the conformance watch failed: {type(error).__name__}: {error}')
+
+    def parameter_values(self) -> Dict[str, Dict[str, Any]]:
+        """Return the parameter values seen at run time, by node (the manager's page)."""
+        return self._listener.values()
 
     def by_subject(self) -> Dict[str, List[Difference]]:
         """Return the current differences by status (``instance <n>``, ``connection <i>``)."""

@@ -36,6 +36,25 @@ def test_a_numeric_option_refuses_a_value_out_of_its_range(capsys, option, value
         '', f'bringup: error: {said}; nothing was started\n')
 
 
+@pytest.mark.parametrize('value, said', [
+    ('70000', '--web 70000: is not a port (0 to 65535)'),
+    ('http', '--web http: is not a port (0 to 65535)'),
+    ('-1', '--web -1: is not a port (0 to 65535)'),
+])
+def test_the_page_takes_a_port(capsys, value, said):
+    parser = options('bringup.json')
+    assert parser.parse_args([]).web is None
+    # the launch files' default, web:='': no page
+    assert parser.parse_args(['--web=']).web is None
+    assert parser.parse_args(['--web', '0']).web == 0
+    assert parser.parse_args([]).web_address == '127.0.0.1'
+    with pytest.raises(SystemExit) as ended:
+        parser.parse_args([f'--web={value}'])
+    assert ended.value.code == 2
+    captured = capsys.readouterr()
+    assert (captured.out, captured.err) == ('', f'bringup: error: {said}; nothing was started\n')
+
+
 def test_an_unknown_option_is_one_line_too(capsys):
     with pytest.raises(SystemExit):
         options('bringup.json').parse_args(['--heartbeats', '1'])

@@ -311,7 +311,7 @@ const Everything::Parameters & Everything::params() const
 void Everything::create_ports()
 {
   keep_publisher(
-    pTick, create_publisher<all_ports_msgs::msg::Tick>(
+    pTick, create_counted_publisher<all_ports_msgs::msg::Tick>(
       "pTick", qos_pTick(), publisher_options()));
   {
     rclcpp::SubscriptionOptions options = subscription_options();

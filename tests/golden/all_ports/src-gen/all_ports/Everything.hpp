@@ -23,6 +23,7 @@
 #include "robmosys_runtime/event_client.hpp"
 #include "robmosys_runtime/event_server.hpp"
 #include "robmosys_runtime/query_client.hpp"
+#include "robmosys_runtime/sends.hpp"
 
 namespace all_ports
 {
@@ -133,7 +134,7 @@ protected:
   virtual void fTearDown() = 0;
 
   /// Provided push port (all_ports_msgs/msg/Tick).
-  rclcpp_lifecycle::LifecyclePublisher<all_ports_msgs::msg::Tick>::SharedPtr pTick;
+  robmosys_runtime::CountedPublisher<all_ports_msgs::msg::Tick>::SharedPtr pTick;
 
   /// Required push port (all_ports_msgs/msg/Tick).
   rclcpp::Subscription<all_ports_msgs::msg::Tick>::SharedPtr rTick;

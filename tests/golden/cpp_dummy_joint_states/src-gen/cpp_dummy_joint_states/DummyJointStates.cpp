@@ -153,7 +153,7 @@ const DummyJointStates::Parameters & DummyJointStates::params() const
 void DummyJointStates::create_ports()
 {
   keep_publisher(
-    joint_states, create_publisher<sensor_msgs::msg::JointState>(
+    joint_states, create_counted_publisher<sensor_msgs::msg::JointState>(
       "joint_states", qos_joint_states(), publisher_options()));
   add_periodic(
     "Publish", std::chrono::nanoseconds(100000000), [this]() {

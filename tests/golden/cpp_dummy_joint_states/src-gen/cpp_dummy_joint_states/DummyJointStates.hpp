@@ -16,6 +16,7 @@
 #include "sensor_msgs/msg/joint_state.hpp"
 #include "robmosys_runtime/component_node.hpp"
 #include "robmosys_runtime/parameters.hpp"
+#include "robmosys_runtime/sends.hpp"
 
 namespace cpp_dummy_joint_states
 {
@@ -82,7 +83,7 @@ protected:
   virtual void fPublish() = 0;
 
   /// Provided push port (sensor_msgs/msg/JointState).
-  rclcpp_lifecycle::LifecyclePublisher<sensor_msgs::msg::JointState>::SharedPtr joint_states;
+  robmosys_runtime::CountedPublisher<sensor_msgs::msg::JointState>::SharedPtr joint_states;
 
 private:
   Parameters params_;

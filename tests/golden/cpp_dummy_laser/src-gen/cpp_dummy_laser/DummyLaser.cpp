@@ -119,7 +119,7 @@ const DummyLaser::Parameters & DummyLaser::params() const
 void DummyLaser::create_ports()
 {
   keep_publisher(
-    scan, create_publisher<sensor_msgs::msg::LaserScan>(
+    scan, create_counted_publisher<sensor_msgs::msg::LaserScan>(
       "scan", qos_scan(), publisher_options()));
   add_periodic(
     "Scan", std::chrono::nanoseconds(100000000), [this]() {

@@ -13,6 +13,7 @@
 #include "rclcpp_lifecycle/lifecycle_publisher.hpp"
 #include "sensor_msgs/msg/laser_scan.hpp"
 #include "robmosys_runtime/component_node.hpp"
+#include "robmosys_runtime/sends.hpp"
 
 namespace cpp_dummy_laser
 {
@@ -65,7 +66,7 @@ protected:
   virtual void fScan() = 0;
 
   /// Provided push port (sensor_msgs/msg/LaserScan).
-  rclcpp_lifecycle::LifecyclePublisher<sensor_msgs::msg::LaserScan>::SharedPtr scan;
+  robmosys_runtime::CountedPublisher<sensor_msgs::msg::LaserScan>::SharedPtr scan;
 
 private:
   Parameters params_;

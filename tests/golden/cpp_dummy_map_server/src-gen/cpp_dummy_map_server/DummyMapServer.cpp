@@ -136,7 +136,7 @@ const DummyMapServer::Parameters & DummyMapServer::params() const
 void DummyMapServer::create_ports()
 {
   keep_publisher(
-    map, create_publisher<nav_msgs::msg::OccupancyGrid>(
+    map, create_counted_publisher<nav_msgs::msg::OccupancyGrid>(
       "map", qos_map(), publisher_options()));
   add_periodic(
     "Publish", std::chrono::nanoseconds(1000000000), [this]() {

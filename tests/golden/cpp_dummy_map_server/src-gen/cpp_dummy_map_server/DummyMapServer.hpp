@@ -13,6 +13,7 @@
 #include "rclcpp_lifecycle/lifecycle_publisher.hpp"
 #include "nav_msgs/msg/occupancy_grid.hpp"
 #include "robmosys_runtime/component_node.hpp"
+#include "robmosys_runtime/sends.hpp"
 
 namespace cpp_dummy_map_server
 {
@@ -68,7 +69,7 @@ protected:
   virtual void fPublish() = 0;
 
   /// Provided push port (nav_msgs/msg/OccupancyGrid).
-  rclcpp_lifecycle::LifecyclePublisher<nav_msgs::msg::OccupancyGrid>::SharedPtr map;
+  robmosys_runtime::CountedPublisher<nav_msgs::msg::OccupancyGrid>::SharedPtr map;
 
 private:
   Parameters params_;

@@ -91,7 +91,7 @@ const PeriodicPublisher::Parameters & PeriodicPublisher::params() const
 void PeriodicPublisher::create_ports()
 {
   keep_publisher(
-    pMap, create_publisher<simple_msgs::msg::Map>(
+    pMap, create_counted_publisher<simple_msgs::msg::Map>(
       "pMap", qos_pMap(), publisher_options()));
   add_periodic(
     "Activity1", std::chrono::nanoseconds(500000000), [this]() {

@@ -13,6 +13,7 @@
 #include "rclcpp_lifecycle/lifecycle_publisher.hpp"
 #include "simple_msgs/msg/map.hpp"
 #include "robmosys_runtime/component_node.hpp"
+#include "robmosys_runtime/sends.hpp"
 
 namespace cpp_publisher
 {
@@ -59,7 +60,7 @@ protected:
   virtual void fPublishing();
 
   /// Provided push port (simple_msgs/msg/Map).
-  rclcpp_lifecycle::LifecyclePublisher<simple_msgs::msg::Map>::SharedPtr pMap;
+  robmosys_runtime::CountedPublisher<simple_msgs::msg::Map>::SharedPtr pMap;
 
 private:
   Parameters params_;

@@ -175,7 +175,7 @@ void Sender::create_ports()
   // the validators of the component, over the values of the moment
   rules_.check_current();
   keep_publisher(
-    sMap, create_publisher<simple_msgs::msg::Map>(
+    sMap, create_counted_publisher<simple_msgs::msg::Map>(
       "sMap", qos_sMap(), publisher_options()));
   add_periodic(
     "Send", std::chrono::nanoseconds(500000000), [this]() {

@@ -14,6 +14,7 @@
 #include "simple_msgs/msg/map.hpp"
 #include "robmosys_runtime/component_node.hpp"
 #include "robmosys_runtime/parameters.hpp"
+#include "robmosys_runtime/sends.hpp"
 
 namespace cpp_sender
 {
@@ -88,7 +89,7 @@ protected:
   virtual std::string vMaxCells(const int64_t & value);
 
   /// Required send port (simple_msgs/msg/Map).
-  rclcpp_lifecycle::LifecyclePublisher<simple_msgs::msg::Map>::SharedPtr sMap;
+  robmosys_runtime::CountedPublisher<simple_msgs::msg::Map>::SharedPtr sMap;
 
 private:
   Parameters params_;
