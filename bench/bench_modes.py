@@ -131,8 +131,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             line = bringup.stdout.readline() if bringup.stdout else ''
             if not line and bringup.poll() is not None:
                 raise RuntimeError('bringup ended before the system was up')
-        switch = {m: node.create_client(Trigger, f'/{SYSTEM}_bringup/set_mode/{m}')
-                  for m in args.modes}
+        switch: dict[str, Any] = {
+            m: node.create_client(Trigger, f'/{SYSTEM}_bringup/set_mode/{m}') for m in args.modes}
         switch['report'] = node.create_client(Trigger, f'/{SYSTEM}_bringup/report')
         for client in switch.values():
             assert client.wait_for_service(timeout_sec=30)

@@ -390,7 +390,8 @@ def test_example_workspace(tmp_path):
         'dummy_robot_monitor', 'example_msgs', 'examples_system', 'fibonacci_client',
         'fibonacci_server', 'fleet_system', 'handwritten_nodes', 'handwritten_nodes',
         'handwritten_system',
-        'level_sensor', 'level_watcher', 'mixed_system', 'publisher', 'pubsub_system',
+        'level_sensor', 'level_watcher', 'mixed_system', 'mode_arm_system',
+        'mode_robot_system', 'mode_sensor', 'publisher', 'pubsub_system',
         'receiver', 'sender', 'simple_msgs', 'subscriber', 'text_relay']
 
     msgs = _model(workspace, 'simple_msgs', ServiceDefinition)
