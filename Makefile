@@ -9,7 +9,7 @@
 #   make clean  remove the venv and the test workspace's build results
 #   make bench  run the seven benchmarks of bench/ (or one: make bench-generation,
 #               bench-colcon, bench-runtime, bench-bringup, bench-cppbuild, bench-watch,
-#               bench-page;
+#               bench-page; bench-modes, which needs make demo, runs apart;
 #               BENCH_ARGS='--help' shows their options)
 
 PYTHON ?= python3
@@ -48,7 +48,7 @@ ifneq ($(TEST_JOBS),1)
 PYTEST_FLAGS += -n $(TEST_JOBS) --dist loadfile
 endif
 
-.PHONY: venv demo test clean bench bench-generation bench-colcon bench-runtime bench-bringup bench-cppbuild bench-watch bench-page
+.PHONY: venv demo test clean bench bench-generation bench-colcon bench-runtime bench-bringup bench-cppbuild bench-watch bench-page bench-modes
 
 venv: $(VENV)/.stamp-package
 
@@ -89,6 +89,10 @@ test: venv
 BENCH_ARGS ?=
 bench-generation bench-colcon bench-runtime bench-bringup bench-cppbuild bench-watch bench-page: bench-%: venv
 	$(VPY) bench/bench_$*.py $(BENCH_ARGS)
+
+# a mode switch against its steps made with rclpy, on test_workspace's mode_robot_system
+bench-modes: demo
+	$(VPY) bench/bench_modes.py $(BENCH_ARGS)
 
 bench: bench-generation bench-colcon bench-runtime bench-bringup bench-cppbuild bench-watch bench-page
 

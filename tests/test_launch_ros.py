@@ -231,8 +231,8 @@ def test_show_args_lists_the_arguments_with_their_descriptions(
     arguments = {line.split('|')[0]: line.split('|')[1:] for line in shown.splitlines()}
     # the manager's launch file (it starts bringup --attach) takes its page's too
     manager = {'web', 'web_address'} if launch_file == 'pubsub_system.launch.py' else set()
-    assert set(arguments) == {'use_sim_time', 'log_level', 'namespace', 'params_file'} | \
-        manager, shown
+    assert set(arguments) == {'use_sim_time', 'log_level', 'namespace', 'params_file',
+                              'mode'} | manager, shown
     assert arguments['log_level'][0] == 'info'
     assert 'cfg/params.yaml: its values win' in arguments['params_file'][1]
     assert all(description for _, description in arguments.values()), shown

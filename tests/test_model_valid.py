@@ -390,7 +390,8 @@ def test_example_workspace(tmp_path):
         'dummy_robot_monitor', 'example_msgs', 'examples_system', 'fibonacci_client',
         'fibonacci_server', 'fleet_system', 'handwritten_nodes', 'handwritten_nodes',
         'handwritten_system',
-        'level_sensor', 'level_watcher', 'mixed_system', 'publisher', 'pubsub_system',
+        'level_sensor', 'level_watcher', 'mixed_system', 'mode_arm_system',
+        'mode_robot_system', 'mode_sensor', 'publisher', 'pubsub_system',
         'receiver', 'sender', 'simple_msgs', 'subscriber', 'text_relay']
 
     msgs = _model(workspace, 'simple_msgs', ServiceDefinition)
@@ -453,3 +454,36 @@ def test_documented_models(tmp_path):
     assert {m.package for m in result.workspace.models} >= {
         'grid_interfaces', 'grid_publisher', 'grid_viewer', 'grid_system',
         'ping_interfaces', 'pinger', 'ping_system'}
+
+
+# modes ----------------------------------------------------------------------
+
+def test_modes_of_a_system(workspace):
+    robot = _model(workspace, 'modes_robot', System)
+    path = VALID[0].parent / 'system_modes.yaml'
+    assert robot.initial_mode == 'docking'
+    assert robot.initial_mode_location.line == _line(path, 'initial: docking')
+    assert [m.name for m in robot.modes] == ['docking', 'cruising', 'mapping']
+    docking = robot.mode('docking')
+    assert docking.active == ('driver',)
+    assert [(v.instance, v.values) for v in docking.parameters] == [
+        ('driver', (('rate', 2), ('gain', 0.5)))]
+    assert docking.subsystems == (('arm', 'stowed'),)
+    assert docking.location.line == _line(path, 'docking:')
+    assert docking.active_locations[0].line == _line(path, 'active: [driver]')
+    assert _model(workspace, 'modes_arm', System).mode('stowed').description == \
+        'Only the talker, slowly.'
+
+
+def test_modes_reach_into_subsystems(workspace):
+    """A mode's active instances and values, with those of its subsystems' modes."""
+    from colcon_robmosys.model.modes import active_instances, mode_values
+    systems = {m.package: m for m in workspace.models if isinstance(m, System)}
+    robot = systems['modes_robot']
+    assert {m.name: active_instances(robot, m, systems) for m in robot.modes} == {
+        'docking': {'driver', 'arm.talker'},
+        'cruising': {'driver', 'planner', 'arm.talker'},
+        'mapping': {'planner', 'arm.talker', 'arm.listener'}}
+    assert mode_values(robot, robot.mode('mapping'), systems) == {
+        'planner': {'retries': 0}, 'arm.talker': {'rate': 50, 'names': ['x', 'y']},
+        'arm.listener': {'retries': 5}}

@@ -227,3 +227,20 @@ def test_the_cpp_starting_component_builds_and_runs(tmp_path, domain_id):
         assert wait_until(lambda: 'publishing: hello' in process.output(), timeout=20), \
             process.output()
         assert driver.transition('/starter', 'deactivate')
+
+
+def test_a_starting_system_with_two_modes(tmp_path):
+    """``robmosys-new system --modes``: running (every managed instance) and idle (none)."""
+    _write(tmp_path, 'demo_node', render_starter(
+        starter_component(_info('demo_node'), Language('python'), None)))
+    node = _check(tmp_path).workspace.model('demo_node')
+    text = render_starter(starter_system(_info('demo_system'), [node, node], modes=True))
+    _write(tmp_path, 'demo_system', text)
+    result = _check(tmp_path)
+    assert result.diagnostics == []
+    model = result.workspace.model('demo_system')
+    assert model.initial_mode == 'running'
+    assert [(m.name, m.active) for m in model.modes] == [
+        ('running', ('demo_node', 'demo_node_2')), ('idle', ())]
+    comments = ' '.join(line.split('#', 1)[1] for line in text.splitlines() if '#' in line)
+    assert {'modes', 'initial', 'active', 'parameters'} <= set(re.findall(r'[a-z_]+', comments))

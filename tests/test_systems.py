@@ -99,7 +99,8 @@ def generated(tmp_path_factory) -> Path:
 
 def test_every_example_system_is_checked():
     assert SYSTEMS == ['dummy_robot_bringup', 'dummy_robot_cpp_bringup', 'examples_system',
-                       'fleet_system', 'handwritten_system', 'mixed_system', 'pubsub_system']
+                       'fleet_system', 'handwritten_system', 'mixed_system', 'mode_arm_system',
+                       'mode_robot_system', 'pubsub_system']
 
 
 def _launch_files(package: str) -> list[str]:

@@ -17,6 +17,7 @@ from colcon_robmosys.check.context import CheckContext
 from colcon_robmosys.check.cycles import (
     check_activation_cycles, check_dependency_cycles, check_message_cycles)
 from colcon_robmosys.check.index import InterfaceIndex
+from colcon_robmosys.check.modes import check_modes
 from colcon_robmosys.check.types import check_components, check_definitions
 from colcon_robmosys.check.wiring import check_systems
 from colcon_robmosys.model.types import (
@@ -32,6 +33,7 @@ RULES: tuple[Rule, ...] = (
     check_definitions,        # types.py: fields name interfaces that exist
     check_components,         # types.py: ports' types, the packages depended on
     check_systems,            # wiring.py (with qos.py, parameters.py)
+    check_modes,              # modes.py
     check_dependency_cycles,  # cycles.py
     check_message_cycles,     # cycles.py
     check_activation_cycles,  # cycles.py

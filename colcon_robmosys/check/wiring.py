@@ -124,12 +124,17 @@ def _check_system(ctx: CheckContext, system: System) -> None:
                             f"required port '{instance.name}."
                             f"{port.name}' is not connected")
         if component is not None:
-            _check_watch_lists(ctx, instance, component, connected)
+            _check_watch_lists(ctx, instance, component,
+                               set() if system.modes else connected)
 
 
 def _check_watch_lists(ctx: CheckContext, instance: Instance, component: Component,
                        connected: set[tuple[str, str]]) -> None:
-    """Check the ports an instance lists as ``unconnected`` and ``quiet``."""
+    """Check the ports an instance lists as ``unconnected`` and ``quiet``.
+
+    In a system with modes, a connected port may be listed too: it stays
+    without its provider in the modes that leave the provider inactive.
+    """
     listed = [('unconnected', p) for p in instance.unconnected] + \
         [('quiet', p) for p in instance.quiet]
     for (key, name), location in zip(listed, instance.watch_locations):

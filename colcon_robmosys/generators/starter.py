@@ -102,6 +102,8 @@ class StarterSystem:
     connections: tuple[tuple[str, str], ...]
     #: 'instance.port' of each required port nothing among the instances provides
     unconnected: tuple[str, ...]
+    #: the instances a mode may make active (lifecycle nodes); none: no modes
+    managed: tuple[str, ...] = ()
 
 
 def name_problems(kind: str, name: str) -> list[str]:
@@ -134,8 +136,11 @@ def starter_component(info: StarterInfo, language: Language,
                             backend(language).starter, package, message, field)
 
 
-def starter_system(info: StarterInfo, components: Sequence[Component]) -> StarterSystem:
+def starter_system(info: StarterInfo, components: Sequence[Component],
+                   modes: bool = False) -> StarterSystem:
     """Return a starting system: one instance per component, wired where it can be.
+
+    With modes, it starts with two: every managed instance active, and none.
 
     Each required port is connected to a provided port of the same pattern
     and type whose QoS it can match, of another instance first, else of its
@@ -161,7 +166,8 @@ def starter_system(info: StarterInfo, components: Sequence[Component]) -> Starte
     instances = tuple(StarterInstance(name, c.package, tuple(
         (p.name, p.type, yaml_value(p.default)) for p in c.parameters))
         for name, c in zip(names, components))
-    return StarterSystem(info, instances, tuple(connections), tuple(unconnected))
+    managed = tuple(n for n, c in zip(names, components) if c.lifecycle_node) if modes else ()
+    return StarterSystem(info, instances, tuple(connections), tuple(unconnected), managed)
 
 
 def _provider(port: Port, own: str,

@@ -28,6 +28,7 @@ LAUNCH_FILES = (
 FILES = (
     Row(PARAMS_FILE, 'system/params.yaml.jinja'),
     Row('{diagram}', 'system/diagram.dot.jinja'),
+    Row('doc/modes.md', 'system/modes.md.jinja', when='has_modes'),
     Row('{svg}', 'system/diagram.svg.jinja'),
     Row('bringup.json', 'system/bringup.json.jinja'),
     Row('bringup', 'system/bringup.jinja', executable=True),

@@ -23,6 +23,7 @@ from colcon_robmosys.mapping.executors import shared_executors
 from colcon_robmosys.mapping.launch import (
     launch_files, LaunchFile, PARAMS_FILE, process_layout, SystemNode)
 from colcon_robmosys.mapping.layout import lay_out, Layout
+from colcon_robmosys.mapping.modes import ModePlan, plan_modes
 from colcon_robmosys.mapping.names import connection_name
 from colcon_robmosys.mapping.parameters import NODE_PARAMETERS
 from colcon_robmosys.mapping.portkinds import port_kind
@@ -73,8 +74,16 @@ class SystemPackage:
     declared: tuple[tuple[str, tuple[DeclaredParameter, ...]], ...] = ()
     #: language -> the executor of its shared process (mapping/executors.py)
     executors: tuple[tuple[str, str], ...] = ()
+    #: its modes, whole (mapping/modes.py), and the one it starts in
+    modes: tuple[ModePlan, ...] = ()
+    initial_mode: str = ''
     #: the drawing of the system (doc/<package>.svg), which the manager's page shows too
     layout: Layout | None = None
+
+    @property
+    def has_modes(self) -> bool:
+        """Tell whether the system has modes (and a page of them, doc/modes.md)."""
+        return bool(self.modes)
 
     @property
     def svg(self) -> str:
@@ -115,10 +124,16 @@ class SystemPackage:
                         'from': c.source, 'to': c.target,
                         'location': installed_location(c.location, installed)}
                        for c in self.connections]
-        return json_lines({'generated_by': ' '.join(self.banner.lines),
-                           'package': self.package, 'params_file': PARAMS_FILE,
-                           'processes': self.processes, 'executors': dict(self.executors),
-                           'instances': instances, 'connections': connections})
+        description = {'generated_by': ' '.join(self.banner.lines),
+                       'package': self.package, 'params_file': PARAMS_FILE,
+                       'processes': self.processes, 'executors': dict(self.executors),
+                       'instances': instances, 'connections': connections}
+        if self.modes:
+            description['initial_mode'] = self.initial_mode
+            description['modes'] = [
+                {**m.as_json(), 'location': installed_location(m.location, installed)}
+                for m in self.modes]
+        return json_lines(description)
 
 
 def json_lines(description: dict[str, Any]) -> str:
@@ -290,6 +305,7 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
     cpp_container = any(n.plugin for n in nodes)
     watched = watched_instances(system, components, topics)
     connections = system_connections(system, components, topics)
+    modes = plan_modes(system, workspace, components, (n.instance for n in nodes), watched)
     instances = diagram_instances(system, components)
     edges = diagram_edges(system, components, topics)
     return SystemPackage(
@@ -304,7 +320,8 @@ def plan_system(system: System, workspace: Workspace) -> SystemPackage:
         watched=watched,
         model_files=tuple(sorted(_installed_models(workspace, [
             *(w.location for w in watched), *(at for w in watched for _, _, at in w.parameters),
-            *(c.location for c in connections)]).items())),
+            *(c.location for c in connections), *(m.location for m in modes)]).items())),
+        modes=modes, initial_mode=system.initial_mode,
         declared=tuple((i.name, declared_parameters(i, components[i.name], topics,
                                                     dict(system.parameters)))
                        for i in system.instances),

@@ -5,13 +5,15 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 from colcon_robmosys.errors import Location
 from colcon_robmosys.model.build_base import BuilderBase
 from colcon_robmosys.model.loader import NodePath, RawData
 from colcon_robmosys.model.types import (
-    Connection, Executor, Instance, PortRef, QoSOverride, Subsystem, System)
+    Connection, Executor, Instance, Mode, ModeValues, PortRef, QoSOverride, Subsystem,
+    System)
 
 
 class SystemBuilder(BuilderBase):
@@ -86,13 +88,43 @@ class SystemBuilder(BuilderBase):
                                           else None, body.get('topic'),
                                           self.at(cpath, key=True)))
         everywhere = tuple(raw.get('parameters', {}).items())
-        return System(info, name, tuple(instances), tuple(connections),
-                      self.at(path + ('package',)),
-                      raw.get('processes', ''), tuple(subsystems), everywhere,
-                      tuple(self.at(path + ('parameters', n), key=True) for n, _ in everywhere),
-                      self._entries(path + ('parameters',), everywhere),
-                      Executor(raw['executor']) if 'executor' in raw else None,
-                      self.at(path + ('executor',)) if 'executor' in raw else None)
+        modes = raw.get('modes', {})
+        system = System(
+            info, name, tuple(instances), tuple(connections), self.at(path + ('package',)),
+            raw.get('processes', ''), tuple(subsystems), everywhere,
+            tuple(self.at(path + ('parameters', n), key=True) for n, _ in everywhere),
+            self._entries(path + ('parameters',), everywhere),
+            Executor(raw['executor']) if 'executor' in raw else None,
+            self.at(path + ('executor',)) if 'executor' in raw else None)
+        if not modes:
+            return system
+        return replace(system, modes=self._modes(path + ('modes',), modes),
+                       initial_mode=modes['initial'],
+                       initial_mode_location=self.at(path + ('modes', 'initial')))
+
+    def _modes(self, path: NodePath, raw: RawData) -> tuple[Mode, ...]:
+        """Return the modes of a system (``modes: {initial: name, name: mode}``)."""
+        modes = []
+        for name, body in raw.items():
+            if name == 'initial':
+                continue
+            mpath = path + (name,)
+            active = tuple(body.get('active', ()))
+            values = []
+            for instance, given in body.get('parameters', {}).items():
+                ipath = mpath + ('parameters', instance)
+                pairs = tuple(given.items())
+                values.append(ModeValues(
+                    instance, pairs, self.at(ipath, key=True),
+                    tuple(self.at(ipath + (n,), key=True) for n, _ in pairs),
+                    self._entries(ipath, pairs)))
+            subsystems = tuple(body.get('subsystems', {}).items())
+            modes.append(Mode(
+                name, active, tuple(values), subsystems, self.at(mpath, key=True),
+                self.at_each(mpath + ('active',), active),
+                tuple(self.at(mpath + ('subsystems', s)) for s, _ in subsystems),
+                body.get('description', '')))
+        return tuple(modes)
 
     def _entries(self, path: NodePath, values: tuple[tuple[str, Any], ...]
                  ) -> tuple[tuple[Location, ...], ...]:

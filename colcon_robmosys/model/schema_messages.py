@@ -36,6 +36,7 @@ _MODELS = {'service_definitions': 'service definition', 'components': 'component
 _ENTRIES = {
     'ports': 'port', 'activities': 'activity', 'functions': 'function',
     'parameters': 'parameter', 'instances': 'instance', 'subsystems': 'subsystem',
+    'modes': 'mode',
     'communication_objects': 'communication object', 'queries': 'query',
     'actions': 'action', 'events': 'event', 'fields': 'field', 'constants': 'constant',
 }

@@ -136,6 +136,45 @@ class Subsystem:
 
 
 @dataclass(frozen=True)
+class ModeValues:
+    """The values a mode gives the parameters of one instance."""
+
+    instance: str
+    values: tuple[tuple[str, Any], ...]
+    #: where the mode names the instance
+    location: Location
+    #: where the key of each value stands
+    value_locations: tuple[Location, ...] = ()
+    #: where each element of each list value stands (none for a scalar)
+    entry_locations: tuple[tuple[Location, ...], ...] = ()
+
+
+@dataclass(frozen=True)
+class Mode:
+    """A mode of a system: its active instances, its values, its subsystems' modes."""
+
+    name: str
+    #: the managed instances of the system (not of its subsystems) active in the mode
+    active: tuple[str, ...]
+    parameters: tuple[ModeValues, ...]
+    #: subsystem -> its mode in this mode (a subsystem not named: its initial mode)
+    subsystems: tuple[tuple[str, str], ...]
+    location: Location
+    #: where each entry of ``active`` stands
+    active_locations: tuple[Location, ...] = ()
+    #: where each entry of ``subsystems`` stands (its value)
+    subsystem_locations: tuple[Location, ...] = ()
+    description: str = ''
+
+    def active_location(self, name: str) -> Location:
+        """Return where the mode lists an instance as active, else where the mode is."""
+        for entry, location in zip(self.active, self.active_locations):
+            if entry == name:
+                return location
+        return self.location
+
+
+@dataclass(frozen=True)
 class System:
     """A system: component instances wired together.
 
@@ -161,11 +200,20 @@ class System:
     #: the executor of its shared processes the model names (None: the mapping's default)
     executor: Executor | None = None
     executor_location: Location | None = None
+    #: its modes, in the model's order (none: one set of instances, as ever)
+    modes: tuple[Mode, ...] = ()
+    #: the mode the system starts in, and where the model names it
+    initial_mode: str = ''
+    initial_mode_location: Location | None = None
 
     @property
     def package(self) -> str:
         """Return the name of the generated package."""
         return self.info.name
+
+    def mode(self, name: str) -> Mode | None:
+        """Return the mode of that name, if any."""
+        return next((m for m in self.modes if m.name == name), None)
 
     def instance(self, name: str) -> Instance | None:
         """Return the instance of that name, if any."""

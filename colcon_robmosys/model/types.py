@@ -22,14 +22,15 @@ from colcon_robmosys.model.definitions import (
     Action, CommunicationObject, Constant, Event, Field, FieldType, Query,
     ServiceDefinition, Structure)
 from colcon_robmosys.model.systems import (
-    Connection, Instance, PortRef, QoSOverride, Subsystem, System)
+    Connection, Instance, Mode, ModeValues, PortRef, QoSOverride, Subsystem, System)
 
 __all__ = [
     'Action', 'Activity', 'CommunicationObject', 'Component', 'Connection',
     'Constant', 'Event', 'Field', 'FieldType', 'Function', 'Instance',
     'Executor', 'InterfaceKind', 'InterfaceRef', 'Language', 'LIFECYCLE_TRANSITIONS',
-    'Maintainer', 'Model', 'model_key', 'ModelFile', 'PackageInfo', 'Parameter',
-    'ParameterRange', 'ParameterSize', 'ParameterValue', 'Pattern', 'PATTERN_INTERFACE',
+    'Maintainer', 'Mode', 'Model', 'model_key', 'ModeValues', 'ModelFile', 'PackageInfo',
+    'Parameter', 'ParameterRange', 'ParameterSize', 'ParameterValue', 'Pattern',
+    'PATTERN_INTERFACE',
     'Port', 'PortRef', 'QoS', 'QoSOverride', 'Query', 'Role',
     'ServiceDefinition', 'Structure', 'Subsystem', 'System', 'Workspace',
 ]

@@ -76,6 +76,10 @@ class RobmosysNewVerb(SubverbVerb):
                     help='The components to instance, each once, by package: of '
                     'the workspace (found as colcon finds packages) or of its '
                     'underlays; ports that fit are connected')
+                sub.add_argument(
+                    '--modes', action='store_true',
+                    help="Start with two modes: 'running' (every managed instance "
+                    "active) and 'idle' (none), 'running' first")
                 add_package_discovery_arguments(sub)
 
     def main(self, *, context):  # noqa: D102
@@ -108,7 +112,7 @@ class RobmosysNewVerb(SubverbVerb):
             if problem:
                 print(problem, file=sys.stderr)
                 return 1
-            starter = starter_system(info, components)
+            starter = starter_system(info, components, modes=args.modes)
         path.parent.mkdir(parents=True, exist_ok=True)
         if not create_user_file(path, render_starter(starter).encode('utf-8')):
             print(f'{display_path(path)}: error: the file exists: it is not replaced',

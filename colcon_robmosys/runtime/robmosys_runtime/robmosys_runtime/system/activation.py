@@ -3,19 +3,19 @@
 """
 Bring the managed instances of a system up: configure them, activate them in order.
 
-Each instance is driven through its lifecycle services (``get_state``,
-``change_state``), never by waiting for ``transition_event`` messages alone:
-those are volatile, and one published before the subscription matched is
-lost, which left bring-ups waiting forever. Every instance is configured at
-once; each is activated as soon as it is inactive and the instances it comes
-after are active. A failure is reported with what it holds back.
+Each instance is driven through its lifecycle services (``get_state``, ``change_state``),
+never by waiting for ``transition_event`` messages alone: those are volatile, and one
+published before the subscription matched is lost, which left bring-ups waiting forever.
+All are configured at once; each is activated once inactive and the instances it comes
+after are active (not those the mode leaves out). A failure is reported with what it
+holds back.
 """
 
 from __future__ import annotations
 
 import threading
 import time
-from typing import Callable, Dict, List, Mapping, Optional, Sequence
+from typing import Callable, Dict, List, Mapping, Optional, Sequence, Set
 
 from lifecycle_msgs.msg import Transition
 from rclpy.node import Node
@@ -43,10 +43,9 @@ class SystemActivation:
     :param report: called with ``(level, text)``, level ``'info'`` or ``'error'``
     :param timeouts: instance name -> seconds for each of its transitions, where
         the model sets it (``timeout`` otherwise)
-    :param told: called with an instance and what says that its bring-up
-        ended, at the instance's bring-up: the state its process told
-        (:meth:`robmosys_runtime.hosting.reports.Reports.take`), taken as its state,
-        or None: the instance is asked
+    :param told: called with an instance and what says that its bring-up ended: the
+        state its process told (:meth:`robmosys_runtime.hosting.reports.Reports.take`),
+        taken as its state, or None: the instance is asked
     """
 
     def __init__(self, node: Node, instances: Mapping[str, str],
@@ -72,18 +71,22 @@ class SystemActivation:
         # once the bring-up threads have ended (see _prepare)
         self._unprepared: List[str] = []
         self._preparer: Optional[threading.Thread] = None
-        self._calls = LifecycleCalls(
+        self.calls = LifecycleCalls(
             node, instances, timeout=timeout,
             start_timeout=timeout if start_timeout is None else start_timeout,
             timeouts=self._timeouts, stop=self._stop, failed=self._has_failed)
+        #: instances configured and left inactive: the system's mode leaves them out
+        self.held: Set[str] = set()
+        #: called with an instance once inactive, before it is activated (a mode's values)
+        self.configured: Optional[Callable[[str], None]] = None
 
     def _has_failed(self, name: str) -> bool:
         with self._changed:
             return name in self._failed
 
     def _log(self, level: str, text: str) -> None:
-        logger = self._node.get_logger()
-        (logger.error if level == 'error' else logger.info)(text)
+        (self._node.get_logger().error if level == 'error' else self._node.get_logger().info)(
+            text)
 
     def start(self, names: Optional[Sequence[str]] = None) -> None:
         """
@@ -109,8 +112,7 @@ class SystemActivation:
 
     def restart(self, *names: str) -> None:
         """Bring instances up again, with what their failure held back."""
-        states = self.states()
-        todo = list(names)
+        states, todo = self.states(), list(names)
         for name in names:
             todo += [n for n in self._waiting_for(name)
                      if states.get(n) != 'active' and n not in todo]
@@ -135,12 +137,12 @@ class SystemActivation:
 
     def discovering(self, name: str) -> bool:
         """Tell whether an instance's get_state is still being discovered (see probe)."""
-        return self._calls.discovering(name)
+        return self.calls.discovering(name)
 
     def probe(self, name: str, timeout: float) -> Optional[str]:
         """Return the state an instance tells within timeout, or None; failed ones too."""
         try:
-            return self._calls.get_state(name, timeout=timeout, failed_too=True)
+            return self.calls.get_state(name, timeout=timeout, failed_too=True)
         except (Failed, Stopped):
             return None
 
@@ -153,7 +155,8 @@ class SystemActivation:
             outcome = Outcome(active=sorted(n for n, s in self._states.items() if s == 'active'),
                               failed=dict(self._failed))
         for name in self._instances:
-            if name not in outcome.active and name not in outcome.failed:
+            if name not in outcome.active and name not in outcome.failed and \
+                    name not in self.held:
                 outcome.held_back[name] = self._blockers(name)
         return outcome
 
@@ -168,11 +171,7 @@ class SystemActivation:
             self._changed.notify_all()
 
     def close(self, timeout: float = 5.0) -> None:
-        """
-        Stop, and wait for the clients being made in the background (before the node goes).
-
-        A client made while the node is destroyed raises in that thread.
-        """
+        """Stop; wait for the clients made in the background (one made as the node goes raises)."""
         self.stop()
         with self._changed:
             preparer = self._preparer
@@ -217,8 +216,7 @@ class SystemActivation:
         """
         for thread in self._threads:
             thread.join()
-        # the bring-up is over (stopped or not): the services are used again
-        self._stop.clear()
+        self._stop.clear()  # the bring-up is over (stopped or not): services are used again
         done: List[str] = []
         remaining = [n for n in reversed(self.order()) if n not in self._failed]
         while remaining:
@@ -238,16 +236,16 @@ class SystemActivation:
     def _bring_down_one(self, name: str, timeout: float, done: List[str]) -> None:
         try:
             wait = min(timeout, self._timeouts.get(name, timeout))
-            state = self._calls.get_state(name, timeout=wait)
+            state = self.calls.get_state(name, timeout=wait)
             if state == 'active':
-                self._calls.change(name, Transition.TRANSITION_DEACTIVATE, wait)
+                self.calls.change(name, Transition.TRANSITION_DEACTIVATE, wait)
                 done.append(f'deactivate {name}')
                 state = 'inactive'
             if state == 'inactive':
-                self._calls.change(name, Transition.TRANSITION_CLEANUP, wait)
+                self.calls.change(name, Transition.TRANSITION_CLEANUP, wait)
                 done.append(f'cleanup {name}')
                 state = 'unconfigured'
-            self._set(name, state or 'unknown')
+            self.set_state(name, state or 'unknown')
         except (Failed, Stopped) as problem:
             self._report('error', f'instance {name} could not be brought down: {problem}')
 
@@ -264,16 +262,18 @@ class SystemActivation:
             if state is not None:
                 self._prepare_later(name)
             else:
-                state = self._calls.get_state(name) or 'unknown'
+                state = self.calls.get_state(name) or 'unknown'
             if state == 'unconfigured':
-                state = self._calls.change(name, Transition.TRANSITION_CONFIGURE)
-            if state == 'inactive':
+                state = self.calls.change(name, Transition.TRANSITION_CONFIGURE)
+            if state == 'inactive' and self.configured is not None:
+                self.configured(name)
+            if state == 'inactive' and name not in self.held:
                 self._wait_for_predecessors(name)
-                state = self._calls.change(name, Transition.TRANSITION_ACTIVATE)
+                state = self.calls.change(name, Transition.TRANSITION_ACTIVATE)
                 if state == 'active':
                     self._report('info', f'instance {name} is active')
-            self._set(name, state)
-            if state != 'active':
+            self.set_state(name, state)
+            if state != 'active' and (state, name in self.held) != ('inactive', True):
                 self._fail(name, f'is {state}, not active')
         except Stopped:
             return
@@ -293,10 +293,9 @@ class SystemActivation:
         """
         Make the clients of the instances whose process told their state, one by one.
 
-        Their services are then discovered in the background, for the heartbeat
-        and the bring-down. Not before the bring-up threads have ended: two
-        clients per instance, made at once by every thread, held the GIL while
-        the bring-up was to be reported (50 to 70 ms at 20 instances, issue 28).
+        Discovered in the background, for the heartbeat and the bring-down; after the
+        bring-up threads: two clients per instance, made at once by every thread, held
+        the GIL while the bring-up was to be reported (50 to 70 ms at 20, issue 28).
         """
         while True:
             # start() may add threads after the first told its state
@@ -311,7 +310,7 @@ class SystemActivation:
                     self._preparer = None
                     return
                 name = self._unprepared.pop(0)
-            self._calls.prepare(name)
+            self.calls.prepare(name)
 
     def _wait_for_predecessors(self, name: str) -> None:
         with self._changed:
@@ -326,7 +325,8 @@ class SystemActivation:
                     return
                 self._changed.wait(0.5)
 
-    def _set(self, name: str, state: str) -> None:
+    def set_state(self, name: str, state: str) -> None:
+        """Take the state an instance is in now (a mode switch took it there)."""
         with self._changed:
             self._states[name] = state
             self._changed.notify_all()

@@ -28,14 +28,14 @@ import math
 import os
 import re
 import sys
-from typing import Any, Callable, Dict, NoReturn, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, List, NoReturn, Optional, Sequence, Tuple
 
 from ament_index_python.packages import get_package_share_directory
 from robmosys_runtime.hosting.output import say
 from robmosys_runtime.system.host import run_host
 from robmosys_runtime.system.run import run_manager
 from robmosys_runtime.tools.arguments import (
-    any_given, ArgumentError, ARGUMENTS, log_level, moved_description, node_values,
+    any_given, ArgumentError, ARGUMENTS, chosen_mode, log_level, moved_description, node_values,
     normalized_namespace, ros_args_only, sim_time, temporary, without_ros_args, written)
 from robmosys_runtime.tools.locations import resolve_locations
 from robmosys_runtime.web.server import add_options as add_web_options
@@ -169,6 +169,8 @@ def options(description_file: str) -> argparse.ArgumentParser:
     parser.add_argument('--namespace', default='', help=ARGUMENTS['namespace'][1])
     parser.add_argument('--params-file', default='', metavar='FILE',
                         help=ARGUMENTS['params_file'][1])
+    parser.add_argument('--mode', default='', metavar='NAME', help=ARGUMENTS['mode'][1] + (
+        '; with --check: the mode to compare with (default: the one the system is in)'))
     add_web_options(parser)
     parser.add_argument('--description', default=description_file, help=argparse.SUPPRESS)
     return parser
@@ -192,6 +194,8 @@ def apply_arguments(description: Dict[str, Any], params_file: str,
     """
     where = normalized_namespace(args.namespace)
     level = log_level(args.log_level)
+    # --check without --mode: the mode the system runs in, which the check infers
+    args.mode = chosen_mode(description, args.mode) if args.mode or not args.check else ''
     operator = os.path.expanduser(args.params_file)
     if operator and not os.path.isfile(operator):
         raise ArgumentError(f'--params-file {args.params_file!r}: no such file')
@@ -224,7 +228,11 @@ def apply_arguments(description: Dict[str, Any], params_file: str,
 def check(description: Dict[str, Any], args: argparse.Namespace) -> int:
     """Compare the running system with its model once; print each difference; 1 if any."""
     from robmosys_runtime.watch.check import check_once
-    differences = check_once(description, wait=args.check_wait, silence=args.silence)
+    notes: List[str] = []
+    differences = check_once(description, wait=args.check_wait, silence=args.silence,
+                             mode=args.mode, notes=notes)
+    for note in notes:
+        print(note, flush=True)
     for difference in sorted(differences, key=lambda d: (d.location, d.message)):
         print(difference.line(), flush=True)
     return 1 if differences else 0

@@ -111,6 +111,14 @@ class Drift:
             return  # on its way: its next state tells
         with self._lock:
             believed = self._activation.states().get(name)
+            if name in self._activation.held:
+                # the mode leaves it inactive: the watch and ~/report compare what it is in
+                if believed != state:
+                    self._activation.recovered(name)
+                    self._activation.set_state(name, state)
+                    say('info' if state == 'inactive' else 'error',
+                        f'instance {name} is {state} ({how}); the mode leaves it inactive')
+                return
             if state == 'active':
                 if believed != 'active':
                     held = self._activation.recovered(name)

@@ -31,8 +31,8 @@ from launch.substitutions import LaunchConfiguration, SubstitutionFailure
 from robmosys_runtime.hosting.processes import CPP_GROUP
 from robmosys_runtime.hosting.told import told_file
 from robmosys_runtime.tools.arguments import (
-    ArgumentError, ARGUMENTS, LOG_LEVELS, moved, moved_description, normalized_namespace,
-    parameters_file, sim_time, temporary)
+    ArgumentError, ARGUMENTS, chosen_mode, LOG_LEVELS, moved, moved_description,
+    normalized_namespace, parameters_file, sim_time, temporary)
 from robmosys_runtime.tools.paramcheck import check_operator_file
 
 
@@ -147,6 +147,7 @@ def check_arguments(context: LaunchContext, package: str) -> List[Any]:
     try:
         where = namespace(context)
         sim_time(_argument(context, 'use_sim_time'))
+        chosen_mode(_description(package), _argument(context, 'mode'))
         operator = os.path.expanduser(_argument(context, 'params_file').strip())
         key = (package, where, operator)
         if operator and key not in _CHECKED:

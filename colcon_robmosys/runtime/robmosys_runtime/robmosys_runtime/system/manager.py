@@ -48,11 +48,10 @@ def guarded(what: str, callback: Callback) -> Callback:
     """
     Wrap a callback of the manager: an exception is reported, not raised.
 
-    rclpy raises a callback's exception out of ``spin``, and the thread that
-    spun the manager ended with it: every service went unanswered and every
-    instance 'did not tell its state'. A service (std_srvs/Trigger) answers
-    with ``success`` false and the exception as its message; any other
-    callback reports each distinct failure once.
+    rclpy raises a callback's exception out of ``spin``, and the thread that spun the
+    manager ended with it: every service went unanswered and every instance 'did not tell
+    its state'. A service (std_srvs/Trigger) answers with ``success`` false and the
+    exception as its message; any other callback reports each distinct failure once.
     """
     told = set()
 
@@ -78,9 +77,8 @@ def serve(executor: Executor) -> None:
     """
     Spin until the executor is shut down, through any callback that raises.
 
-    The manager's own callbacks are :func:`guarded`; this catches what rclpy
-    raises from elsewhere (a client's future, a callback of a library), so
-    that the manager is never left deaf.
+    The manager's own callbacks are :func:`guarded`; this catches what rclpy raises from
+    elsewhere (a client's future, a callback of a library): the manager is never left deaf.
     """
     while True:
         try:
@@ -99,17 +97,15 @@ class Manager:
     """
     The system manager: its processes, their bring-up and what operators see of them.
 
-    Operators use three services of the node ``<system package>_bringup``
-    (std_srvs/Trigger): ``~/bring_up`` (every managed instance that is not
-    active), ``~/bring_down`` (deactivate, then clean up, those that came last
-    first) and ``~/report`` (the state of every instance; success when all
-    managed ones are active). The state of each instance is published on
-    ``/diagnostics``, one status per instance. A managed instance that left
-    the state the system is in is reported as its transition events tell
-    (:class:`~robmosys_runtime.system.drift.Drift`), and no longer once it is
-    back; with a heartbeat, one that no longer answers too. An instance
-    marked ``respawn`` is started again when its process ends, and brought
-    back to the state of the system.
+    Operators use three services of the node ``<system package>_bringup`` (std_srvs/Trigger):
+    ``~/bring_up`` (every managed instance that is not active), ``~/bring_down``
+    (deactivate, then clean up, those that came last first) and ``~/report`` (the state of
+    every instance; success when all managed ones are active, or inactive where the mode
+    leaves them out). The state of each instance is published on ``/diagnostics``, one
+    status per instance. A managed instance that left the state the system is in is
+    reported as its transition events tell (:class:`~robmosys_runtime.system.drift.Drift`),
+    and no longer once it is back; with a heartbeat, one that no longer answers too. An
+    instance marked ``respawn`` is started again when its process ends, and brought back.
 
     :param processes: the processes of this host, if started already
     :param told: the states the shared process told, if it told them before
@@ -156,7 +152,7 @@ class Manager:
         #: started already, if given: see :func:`start_processes`
         self.processes = processes or Processes(self._exited)
         self.processes.on_exit = self._exited
-        self.drift = Drift(self.activation, lambda: self.up and not self.stopping.is_set())
+        self.drift = Drift(self.activation, self.steady)
         if args.heartbeat > 0:
             heartbeat = Heartbeat(self.activation, args.heartbeat, self._silent, self.instances,
                                   set(self._group_of), lambda: self.up, self.drift)
@@ -166,7 +162,7 @@ class Manager:
         self.watch: Optional[Watch] = None
         # the node spins already: its services and timer come last, once every
         # attribute they read is set (a report asked for at once is answered)
-        self._diagnostics = node.create_publisher(DiagnosticArray, '/diagnostics', 10)
+        self._diagnostics: Any = node.create_publisher(DiagnosticArray, '/diagnostics', 10)
         group = MutuallyExclusiveCallbackGroup()
         for service, answer in (('bring_up', self._bring_up), ('bring_down', self._bring_down),
                                 ('report', self._report), ('conformance', self._conformance)):
@@ -174,6 +170,10 @@ class Manager:
                                 callback_group=group)
         node.create_timer(args.diagnostics_period,
                           guarded('publishing /diagnostics', self.publish_diagnostics))
+
+    def steady(self) -> bool:
+        """Tell whether the states of the instances are the system's: up, not changing."""
+        return self.up and not self.stopping.is_set()
 
     def start(self) -> None:
         """Start the processes of this host and bring every managed instance up."""
@@ -207,11 +207,7 @@ class Manager:
             self.drift.follow(self.node, self.managed, self.stopping)
 
     def _watch(self) -> None:
-        """
-        Make the conformance watch once the bring-up is over, and run it.
-
-        Until it is made, ``~/conformance`` answers that the system was not compared yet.
-        """
+        """Make the conformance watch once up, and run it (~/conformance: not compared yet)."""
         if not self._brought_up():
             return
         sends = self.processes.sends  # where the instances it started count their sends
@@ -295,7 +291,9 @@ class Manager:
 
     def _report(self, request: Any, response: Any) -> Any:
         states = self.states()
-        response.success = all(states.get(n) == 'active' for n in self.managed)
+        held = self.activation.held  # the instances the system's mode leaves inactive
+        response.success = all(states.get(n) == ('inactive' if n in held else 'active')
+                               for n in self.managed)
         response.message = self.state_report()
         watch = self.watch
         if watch is not None:

@@ -129,22 +129,30 @@ def run_manager(description: Dict[str, Any], args: argparse.Namespace,
     executor.add_node(node)
     spinner = threading.Thread(target=serve, args=(executor,), daemon=True)
     spinner.start()
-    manager = Manager(node, description, params_file, args, processes, told=started.told,
-                      groups={} if args.attach else plan_processes(
-                          local, args.description, params_file, shared=args.processes))
+    kind = Manager
+    if description.get('modes'):
+        # imported here: a system without modes needs none of it
+        from robmosys_runtime.system.moded import ModedManager
+        kind = ModedManager
+    manager = kind(node, description, params_file, args, processes, told=started.told,
+                   groups={} if args.attach else plan_processes(
+                       local, args.description, params_file, shared=args.processes))
     if signalled.is_set():
         manager.stopping.set()
     status = 0
     try:
         if page is not None:
-            serve_page(page, manager, args)
+            # a system with modes: the mode shown, a button for each (ModedManager)
+            serve_page(page, manager, args, **getattr(manager, 'page_hooks', dict)())
         manager.start()
         while manager.activation.running() and not signalled.wait(0.02):
             pass
         if not signalled.is_set():
             outcome = manager.activation.wait()
             if not printed or not outcome.ok:
-                print(report(outcome, len(manager.managed)), flush=True)
+                # those the mode leaves inactive are not counted
+                total = len(manager.managed) - len(manager.activation.held)
+                print(report(outcome, total), flush=True)
             if not outcome.ok:
                 status = 1
                 if args.exit_on_failure:
@@ -168,6 +176,8 @@ def run_manager(description: Dict[str, Any], args: argparse.Namespace,
             os.close(started.steps)
         # nothing makes clients on the node any more, before it goes
         manager.activation.close()
+        if getattr(manager, 'modes', None) is not None:
+            manager.modes.close()  # type: ignore[attr-defined]  # a ModedManager's
         executor.shutdown()
         # a thread still in rcl when the process ends aborts it ("terminate called
         # without an active exception"): the spinning thread ends first

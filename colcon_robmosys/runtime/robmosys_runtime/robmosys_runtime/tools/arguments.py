@@ -49,6 +49,9 @@ ARGUMENTS: Dict[str, Tuple[str, str]] = {
     'params_file': (
         '', "an operator's parameter file, applied after the system's cfg/params.yaml: "
         'its values win'),
+    'mode': (
+        '', "the mode the system starts in, of a system with modes; empty: the model's "
+        'initial mode'),
 }
 
 
@@ -86,6 +89,22 @@ def sim_time(text: Optional[str]) -> Optional[bool]:
     if value not in ('true', 'false'):
         raise ArgumentError(f'use_sim_time {text!r}: it is true or false')
     return value == 'true'
+
+
+def chosen_mode(description: Dict[str, Any], text: Optional[str]) -> str:
+    """
+    Return the mode a system starts in: the one given, else its initial one ('' for none).
+
+    :raises ArgumentError: a mode the system does not have
+    """
+    value = (text or '').strip()
+    modes = [m['name'] for m in description.get('modes', ())]
+    if value and not modes:
+        raise ArgumentError(f'mode {text!r}: the system has no modes')
+    if value and value not in modes:
+        raise ArgumentError(f'mode {text!r}: the system has no such mode (its modes: '
+                            f"{', '.join(modes)})")
+    return value or description.get('initial_mode', '')
 
 
 def log_level(text: Optional[str]) -> str:

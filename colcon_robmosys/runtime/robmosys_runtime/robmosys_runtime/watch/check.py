@@ -13,10 +13,10 @@ from __future__ import annotations
 import os
 import threading
 import time
-from typing import Any, Dict, List, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 from rclpy.node import Node
-from robmosys_runtime.watch.conformance import Difference, Model
+from robmosys_runtime.watch.conformance import Difference, Model, same_value
 from robmosys_runtime.watch.watcher import read_parameters, Watch
 
 #: seconds after which a state asked and not answered is asked again
@@ -24,7 +24,8 @@ ASK_AGAIN = 2.0
 
 
 def check_once(description: Dict[str, Any], *, wait: float = 10.0, silence: float = 5.0,
-               period: float = 1.0) -> List[Difference]:
+               period: float = 1.0, mode: str = '',
+               notes: Optional[List[str]] = None) -> List[Difference]:
     """
     Compare a running system with its model once; return the differences.
 
@@ -34,6 +35,10 @@ def check_once(description: Dict[str, Any], *, wait: float = 10.0, silence: floa
     for ``silence`` of their periods (at most ``wait`` more seconds). A
     difference is one that lasts: while there are some, it compares again for
     up to ``wait`` more seconds, as another process's endpoints reach this one.
+
+    A system with modes is compared with ``mode``, or with the mode its
+    instances and values show (:func:`inferred_mode`); ``notes`` gets a line
+    that names it.
     """
     import rclpy
     from rclpy.executors import MultiThreadedExecutor
@@ -59,6 +64,16 @@ def check_once(description: Dict[str, Any], *, wait: float = 10.0, silence: floa
         states = _states(node, model, present, wait)
         read_parameters(node, [i for i in model.instances.values() if i['fqn'] in present],
                         watch._listener, wait)
+        modes = {m['name']: m for m in description.get('modes', ())}
+        if modes:
+            how = 'given'
+            if not mode:
+                mode, how = inferred_mode(description, states, watch._listener.values())
+            if notes is not None:
+                notes.append(f'mode: {mode} ({how})')
+            watch.expect(mode, {n for n, i in model.instances.items() if i['managed']} -
+                         set(modes[mode]['active']), modes[mode]['values'],
+                         modes[mode].get('location', ''))
         periods = [p['period'] for i in model.instances.values() for p in i.get('ports', ())
                    if p.get('period') and not p.get('quiet')]
         listen = min(wait, max([silence * p for p in periods] + [0.0]))
@@ -81,6 +96,35 @@ def check_once(description: Dict[str, Any], *, wait: float = 10.0, silence: floa
         spinner.join(10)
         node.destroy_node()
         rclpy.try_shutdown(context=context)
+
+
+def inferred_mode(description: Dict[str, Any], states: Dict[str, str],
+                  values: Dict[str, Dict[str, Any]]) -> Tuple[str, str]:
+    """
+    Return the mode a running system is in, as its states and values show, and how it shows.
+
+    The mode whose active instances are those active, and whose values the nodes
+    hold; else the nearest (the fewest instances in another state, then the fewest
+    values), the first of the model's on a tie.
+
+    :param values: node fqn -> parameter -> value read
+    """
+    fqn = {i['instance']: i['fqn'] for i in description['instances']}
+    active = {n for n, s in states.items() if s == 'active' and
+              any(i['instance'] == n and i['managed'] for i in description['instances'])}
+    scored = []
+    for mode in description['modes']:
+        states_off = len(active ^ set(mode['active']))
+        values_off = sum(1 for name, given in mode['values'].items()
+                         for parameter, value in given.items()
+                         if parameter in values.get(fqn[name], {}) and
+                         not same_value(values[fqn[name]][parameter], value))
+        scored.append((states_off, values_off, mode['name']))
+    best = min(scored, key=lambda s: s[:2])
+    if best[:2] == (0, 0):
+        return best[2], 'inferred: its active instances and values are those of the mode'
+    return best[2], (f'inferred: the nearest mode; {best[0]} instance(s) in another state, '
+                     f'{best[1]} value(s) other than its')
 
 
 def _states(node: Node, model: Model, present: Any, timeout: float) -> Dict[str, str]:

@@ -130,6 +130,8 @@ class Model:
 
     def __init__(self, description: Dict[str, Any], own_nodes: Iterable[str] = ()) -> None:
         self.package = description['package']
+        #: the mode whose values are compared with ('' for a system without modes)
+        self.mode = ''
         self.instances = {i['instance']: i for i in description['instances']}
         self.connections = description.get('connections', [])
         #: nodes of the model, and of the system's own tools (the manager, a check)
@@ -333,5 +335,6 @@ def _parameters(model: Model, state: State) -> List[Tuple[str, str, str, str]]:
                     f"parameter {name} {parameter['name']}", f'instance {name}',
                     parameter['location'],
                     f"parameter {parameter['name']} of instance {name} is {value!r}, "
-                    f"the model gives {parameter['value']!r}"))
+                    f"{f'mode {model.mode}' if model.mode else 'the model'} gives "
+                    f"{parameter['value']!r}"))
     return found

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import threading
 import time
-from typing import AbstractSet, Any, Callable, Dict, List, Optional
+from typing import AbstractSet, Any, Callable, Dict, Iterable, List, Optional
 
 from rclpy.node import Node
 from rclpy.qos import qos_profile_parameter_events
@@ -130,6 +130,28 @@ class Watch:
         self.differences: Dict[str, Difference] = {}
         #: whether the last check compared (the graph named every end)
         self.compared = False
+        #: the mode compared with ('' for a system without modes), and the state each
+        #: managed instance is to be in where it is not active (see expect)
+        self.mode = ''
+        self.expected: Dict[str, str] = {}
+
+    def expect(self, mode: str, inactive: Iterable[str], values: Dict[str, Dict[str, Any]],
+               location: str) -> None:
+        """
+        Compare with a mode of the system from now on.
+
+        :param inactive: the managed instances the mode leaves inactive
+        :param values: instance -> parameter -> the value it holds in the mode
+        :param location: where the model writes the mode: its values' location
+        """
+        self.mode = self.model.mode = mode
+        self.expected = dict.fromkeys(inactive, 'inactive')
+        for name, given in values.items():
+            instance = self.model.instances.get(name)
+            if instance is not None:
+                self.model.instances[name] = dict(instance, parameters=[
+                    dict(p, value=given[p['name']], location=location)
+                    if p['name'] in given else p for p in instance.get('parameters', ())])
 
     def check(self, states: Dict[str, str], settled: bool) -> Dict[str, Difference]:
         """Compare the system with its model once; report what appeared and cleared."""
@@ -150,12 +172,14 @@ class Watch:
         steady = self._settled_since is not None and now - self._settled_since >= self.grace
         for name, instance in self.model.instances.items():
             current = states.get(name, 'starting')
+            goal = self.expected.get(name, 'active')
             # every instance the model starts runs, once the system is up
-            state.present[name] = steady and (current == 'active' or not instance['managed'])
+            state.present[name] = steady and (current == goal or not instance['managed'])
             if instance['managed']:
                 up = settled and current == 'active'
-                if settled and current not in ('active', 'starting'):
-                    state.wrong_state[name] = f'is {current}, not active'
+                if settled and current not in (goal, 'starting'):
+                    state.wrong_state[name] = f'is {current}, not {goal}' + (
+                        f' (mode {self.mode})' if self.mode else '')
             else:
                 # a plain node shows its ports as soon as it runs; a lifecycle node
                 # that the system leaves unconfigured has none to show

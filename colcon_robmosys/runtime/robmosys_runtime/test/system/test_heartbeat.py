@@ -22,6 +22,8 @@ class Instances:
         self.asked = []
         #: told active by their process, their get_state not discovered yet
         self.discovered_later = set()
+        #: left inactive by the system's mode (none here)
+        self.held = set()
 
     def running(self) -> bool:
         return False

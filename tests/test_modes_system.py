@@ -1,0 +1,185 @@
+# Copyright 2026 The colcon-robmosys authors
+# Licensed under the Apache License, Version 2.0
+"""A system with modes, switched and watched on real rclpy nodes.
+
+mode_robot_system (test_workspace) docks, cruises and maps; its subsystem
+mode_arm_system is stowed or working, as each mode of the robot names. Under
+``bringup`` it comes up in its initial mode, switches in every direction through
+``~/set_mode/<mode>`` (instances go, last first, and come, in the model's order;
+the values arrive and the nodes' own rules take them), refuses a switch asked for
+during another, reports a mode drift (an instance activated by hand, a value
+changed by hand) and clears it, names the mode in ``bringup --check`` (inferred, or
+given), and names the instance that stops a switch halfway.
+"""
+
+from __future__ import annotations
+
+import signal
+import subprocess
+import sys
+
+import pytest
+
+from colcon_robmosys.devtools.ros_env import background, free_domain_id
+from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
+from conftest import assert_no_traceback, requires_ros
+
+pytestmark = [pytest.mark.integration, requires_ros]
+
+SYSTEM = 'mode_robot_system'
+MANAGER = f'/{SYSTEM}_bringup'
+#: instance -> node, in activation order
+NODES = {'driver': '/driver', 'lidar': '/lidar', 'planner': '/planner', 'slam': '/slam',
+         'arm.gripper': '/arm/gripper', 'arm.wrist': '/arm/wrist'}
+ACTIVE = {'docking': ['driver', 'arm.gripper'],
+          'cruising': ['driver', 'lidar', 'planner', 'arm.gripper'],
+          'mapping': ['driver', 'slam', 'arm.gripper', 'arm.wrist']}
+#: instance -> parameter -> value, in each mode (the mode's, else the system's)
+VALUES = {'docking': {'driver': {'rate': 2, 'gain': 1.5}, 'slam': {'rate': 10},
+                      'arm.gripper': {'gain': 0.5}, 'arm.wrist': {'rate': 10}},
+          'cruising': {'driver': {'rate': 40, 'gain': 2.5}, 'slam': {'rate': 10},
+                       'arm.gripper': {'gain': 0.5}, 'arm.wrist': {'rate': 10}},
+          'mapping': {'driver': {'rate': 10, 'gain': 1.5}, 'slam': {'rate': 20},
+                      'arm.gripper': {'gain': 2.0}, 'arm.wrist': {'rate': 40}}}
+
+
+def _trigger(driver: LifecycleDriver, service: str):
+    from std_srvs.srv import Trigger
+    return driver.call(Trigger, f'{MANAGER}/{service}', Trigger.Request(), timeout=30.0,
+                       attempt=10.0)
+
+
+def _in_mode(driver: LifecycleDriver, mode: str) -> None:
+    """Assert that every node is in the state, and holds the values, of a mode."""
+    states = {n: driver.state(fqn) for n, fqn in NODES.items()}
+    assert states == {n: 'active' if n in ACTIVE[mode] else 'inactive' for n in NODES}, mode
+    for name, values in VALUES[mode].items():
+        assert driver.parameters(NODES[name], list(values)) == values, (mode, name)
+
+
+def _switch(driver: LifecycleDriver, mode: str, reached: list) -> list[str]:
+    """Switch to a mode; return the steps its answer lists."""
+    # the events of the last transitions may still be on their way
+    wait_until(lambda: (driver.spin(0.05), False)[1], 0.5)
+    del reached[:]
+    answer = _trigger(driver, f'set_mode/{mode}')
+    assert answer.success, answer.message
+    steps = answer.message.splitlines()
+    assert steps[-1] == f'mode: {mode}'
+    # each transition the answer lists arrives (each node's own events: across
+    # nodes, DDS keeps no order between them; the answer gives the manager's order)
+    assert wait_until(lambda: (driver.spin(0.02), len(
+        [g for _, g in reached if g in ('active', 'inactive')]) == sum(
+        s.startswith(('activate', 'deactivate')) for s in steps))[1], 10), (reached, steps)
+    fqn = {v: k for k, v in NODES.items()}
+    assert sorted(f"{'activate' if goal == 'active' else 'deactivate'} {fqn[node]}"
+                  for node, goal in reached if goal in ('active', 'inactive')) == sorted(
+        s for s in steps if s.startswith(('activate', 'deactivate')))
+    return steps[:-1]
+
+
+def _check(built, domain_id: int, *options: str) -> tuple[int, list[str]]:
+    executable = built.install / SYSTEM / 'lib' / SYSTEM / 'bringup'
+    check = subprocess.run([sys.executable, str(executable), '--check', '--check-wait', '5',
+                            *options], env=built.env(domain_id), capture_output=True,
+                           text=True, timeout=120)
+    assert check.returncode in (0, 1), check.stdout + check.stderr
+    return check.returncode, check.stdout.splitlines()
+
+
+def test_a_system_switched_between_its_modes_and_watched(test_workspace_built):
+    built = test_workspace_built
+    domain_id = free_domain_id()
+    executable = built.install / SYSTEM / 'lib' / SYSTEM / 'bringup'
+    with background([sys.executable, str(executable), '--check-period', '0.5'],
+                    env=built.env(domain_id), stop_timeout=30) as bringup, \
+            LifecycleDriver(domain_id) as driver:
+        # the instances the mode leaves out are configured, and not counted
+        assert wait_until(lambda: 'bringup: 2 of 2 managed instances active' in
+                          bringup.output(), timeout=90), bringup.output()
+        _in_mode(driver, 'docking')
+        report = _trigger(driver, 'report')
+        assert report.success and report.message.splitlines()[0] == 'mode: docking', \
+            report.message
+        reached = driver.watch_transitions(list(NODES.values()))
+        # the subscriptions match before the first switch
+        wait_until(lambda: (driver.spin(0.05), False)[1], 1.0)
+
+        # every direction: docking, cruising, mapping, each to each
+        steps = _switch(driver, 'cruising', reached)
+        assert steps == ['set driver: gain, rate', 'activate lidar', 'activate planner']
+        _in_mode(driver, 'cruising')
+        steps = _switch(driver, 'mapping', reached)
+        # what goes, those that come last first; then the values; then what comes, in order
+        assert steps == ['deactivate planner', 'deactivate lidar', 'set driver: gain, rate',
+                         'set slam: rate', 'set arm.gripper: gain', 'set arm.wrist: rate',
+                         'activate slam', 'activate arm.wrist'], steps
+        _in_mode(driver, 'mapping')
+        for mode in ('docking', 'mapping', 'cruising', 'docking'):
+            _switch(driver, mode, reached)
+            _in_mode(driver, mode)
+
+        # a switch asked for during another is refused, with the reason
+        from std_srvs.srv import Trigger
+        clients = [driver.node.create_client(Trigger, f'{MANAGER}/set_mode/{m}')
+                   for m in ('mapping', 'cruising')]
+        assert all(c.wait_for_service(timeout_sec=10) for c in clients)
+        futures = [c.call_async(Trigger.Request()) for c in clients]
+        assert wait_until(lambda: (driver.spin(0.02), all(f.done() for f in futures))[1], 30)
+        answers = [f.result() for f in futures]
+        refused = [a for a in answers if not a.success]
+        assert len(refused) == 1, [a.message for a in answers]
+        assert refused[0].message.startswith("refused: the switch to '"), refused[0].message
+        assert 'is under way' in refused[0].message
+        _switch(driver, 'docking', reached)
+        _in_mode(driver, 'docking')
+
+        # the watch compares with the mode
+        def conformance() -> tuple[bool, list[str]]:
+            answer = _trigger(driver, 'conformance')
+            return answer.success, answer.message.splitlines()
+        assert wait_until(lambda: conformance() == (True, []), 30), conformance()
+        assert _check(built, domain_id) == (0, [
+            'mode: docking (inferred: its active instances and values are those of the '
+            'mode)'])
+        code, lines = _check(built, domain_id, '--mode', 'cruising')
+        assert code == 1 and lines[0] == 'mode: cruising (given)', lines
+        assert any(line.endswith('error: instance lidar is inactive, not active (mode '
+                                 'cruising)') for line in lines), lines
+        # an instance activated by hand that the mode leaves inactive, then back
+        assert driver.transition('/lidar', 'activate')
+        assert wait_until(lambda: any(line.endswith(
+            'error: instance lidar is active, not inactive (mode docking)')
+            for line in conformance()[1]), 15), conformance()
+        assert not _trigger(driver, 'report').success
+        assert driver.transition('/lidar', 'deactivate')
+        assert wait_until(lambda: conformance() == (True, []), 15), conformance()
+        # a value changed away from the mode's, then back
+        assert driver.set_parameters('/driver', {'rate': 7}) == {'rate': (True, '')}
+        assert wait_until(lambda: any(line.endswith(
+            'error: parameter rate of instance driver is 7, mode docking gives 2')
+            for line in conformance()[1]), 15), conformance()
+        assert driver.set_parameters('/driver', {'rate': 2}) == {'rate': (True, '')}
+        assert wait_until(lambda: conformance() == (True, []), 15), conformance()
+        assert _trigger(driver, 'report').success
+
+        # a switch that fails halfway names the instance, and the report tells where it is
+        assert_no_traceback(bringup.output())
+        before = len(bringup.output())
+        assert driver.set_parameters('/slam', {'refuse': True}) == {'refuse': (True, '')}
+        answer = _trigger(driver, 'set_mode/mapping')
+        assert not answer.success
+        assert answer.message.splitlines()[-1] == \
+            'failed: instance slam failed to activate (it is inactive)', answer.message
+        report = _trigger(driver, 'report')
+        lines = report.message.splitlines()
+        assert not report.success and lines[0] == (
+            'mode: mapping (not reached: instance slam failed to activate (it is inactive))')
+        assert 'slam: failed (failed to activate (it is inactive))' in lines, lines
+        assert driver.state('/slam') == 'inactive' and driver.state('/driver') == 'active'
+
+        bringup.proc.send_signal(signal.SIGINT)
+        assert bringup.proc.wait(timeout=60) == 0, bringup.output()
+        # the node logs why it refused, the manager nothing more
+        after = bringup.output()[before:]
+        assert after.count('Traceback') == 1 and 'told to refuse activation' in after, after
