@@ -69,6 +69,9 @@ def test_colcon_list_shows_one_package_per_model(workspace):
         ('level_watcher', '(robmosys.component)'),
         ('map_tools', '(ros.ament_cmake)'),
         ('mixed_system', '(robmosys.system)'),
+        ('mode_arm_system', '(robmosys.system)'),
+        ('mode_robot_system', '(robmosys.system)'),
+        ('mode_sensor', '(robmosys.component)'),
         ('publisher', '(robmosys.component)'),
         ('pubsub_system', '(robmosys.system)'),
         ('receiver', '(robmosys.component)'),
@@ -157,8 +160,9 @@ def test_generate_creates_missing_implementation_only(workspace):
         'dummy_laser', 'dummy_map_server', 'dummy_robot_bringup', 'dummy_robot_cpp_bringup',
         'dummy_robot_monitor', 'example_msgs', 'examples_system', 'fibonacci_client',
         'fibonacci_server', 'fleet_system', 'handwritten_system', 'level_sensor',
-        'level_watcher', 'mixed_system', 'publisher', 'pubsub_system', 'receiver', 'sender',
-        'simple_msgs', 'subscriber', 'text_relay']
+        'level_watcher', 'mixed_system', 'mode_arm_system', 'mode_robot_system', 'mode_sensor',
+        'publisher', 'pubsub_system', 'receiver', 'sender', 'simple_msgs', 'subscriber',
+        'text_relay']
 
 
 def test_generate_honours_package_selection(workspace):

@@ -502,3 +502,76 @@ def _model_system():
     result = load_workspace(find_model_files([TEST_WORKSPACE / 'src']),
                             InterfaceIndex([Path(sys.prefix)]))
     return result.workspace.model(SYSTEM)
+
+
+#: a system of C++ components with two modes, built on test_workspace's install
+CPP_MODES = """\
+robmosys: 1
+systems:
+  - package: cpp_mode_system
+    license: Apache-2.0
+    maintainers: [{name: RobMoSys Example Team, email: robmosys-examples@example.com}]
+    description: A C++ sender that sends in one of two modes, its maps' size set per mode.
+    instances:
+      receiver: {component: cpp_receiver, parameters: {station: dock}}
+      sender: {component: cpp_sender, after: [receiver], parameters: {width: 5}}
+    connections:
+      - {from: receiver.sMap, to: sender.sMap}
+    modes:
+      initial: idle
+      idle: {active: [receiver], parameters: {sender: {width: 2}}}
+      sending: {active: [receiver, sender], parameters: {sender: {width: 7, height: 3}}}
+"""
+
+
+@requires_rclcpp
+def test_a_cpp_system_is_switched_between_its_modes(test_workspace_built, domain_id,
+                                                    tmp_path):
+    """The manager switches C++ lifecycle nodes; their own rules take the mode's values."""
+    from std_srvs.srv import Trigger
+    root = tmp_path / 'modes_ws'
+    (root / 'src' / 'cpp_mode_system').mkdir(parents=True)
+    (root / 'src' / 'cpp_mode_system' / 'robmosys.yaml').write_text(CPP_MODES)
+    env = test_workspace_built.env(domain_id)
+    built = ros_env.run([str(Path(sys.prefix) / 'bin' / 'colcon'), 'build'], env=env,
+                        cwd=root, timeout=900)
+    assert built.returncode == 0, built.stdout + built.stderr
+    env = ros_env.workspace_env(root / 'install', env)
+    bringup = root / 'install' / 'cpp_mode_system' / 'lib' / 'cpp_mode_system' / 'bringup'
+    manager = '/cpp_mode_system_bringup'
+
+    with ros_env.background([sys.executable, str(bringup), '--check-period', '0.5'],
+                            env=env, stop_timeout=30) as system, \
+            LifecycleDriver(domain_id) as driver:
+        def switch(mode: str) -> list[str]:
+            answer = driver.call(Trigger, f'{manager}/set_mode/{mode}', Trigger.Request(),
+                                 timeout=30.0, attempt=10.0)
+            assert answer.success, answer.message + system.output()
+            return answer.message.splitlines()
+
+        def in_mode(active: str, values: dict) -> bool:
+            return driver.state('/sender') == active and \
+                driver.state('/receiver') == 'active' and \
+                driver.parameters('/sender', list(values)) == values
+
+        assert wait_until(lambda: 'bringup: 1 of 1 managed instances active' in
+                          system.output(), timeout=90), system.output()
+        # the instance the mode leaves out is configured with the mode's values
+        assert in_mode('inactive', {'width': 2, 'height': 4}), system.output()
+        assert switch('sending') == ['set sender: height, width', 'activate sender',
+                                     'mode: sending']
+        assert in_mode('active', {'width': 7, 'height': 3})
+        mark = len(system.output())
+        assert wait_until(lambda: 'received map: width 7, height 3' in
+                          system.output()[mark:], timeout=20), system.output()
+        # back: the sender goes first, then the system's values come back
+        assert switch('idle') == ['deactivate sender', 'set sender: height, width',
+                                  'mode: idle']
+        assert in_mode('inactive', {'width': 2, 'height': 4})
+        report = driver.call(Trigger, f'{manager}/report', Trigger.Request(), timeout=30.0)
+        assert report.message.splitlines()[0] == 'mode: idle', report.message
+        assert wait_until(lambda: driver.call(Trigger, f'{manager}/conformance',
+                                              Trigger.Request(), timeout=30.0).success, 20)
+        system.proc.send_signal(signal.SIGINT)
+        assert system.proc.wait(timeout=60) == 0, system.output()
+        assert_no_traceback(system.output())

@@ -3,7 +3,9 @@
 """One node name each: no two nodes of a running system share a fully qualified name.
 
 The system manager's node is ``/<system>_bringup`` (moved with ``--namespace``);
-the conformance watch's node of its own is ``/<system>_bringup_watch``. Tools
+its helper nodes have names of their own: ``/_<system>_bringup_states`` follows the
+instances' transition events (``/<system>_bringup_watch`` listens to topics that no
+generated component publishes, absent here: the components keep their send times). Tools
 that look a node up by name (``ros2 param``, ``ros2 node info``, lifecycle
 services) need each name once: the ROS graph is read here from a probe node,
 as those tools read it.
@@ -70,8 +72,9 @@ def test_no_two_nodes_of_a_running_system_share_a_name(test_workspace_built, opt
         assert wait_until(lambda: 'bringup: 2 of 2 managed instances active' in
                           bringup.output(), timeout=90), bringup.output()
         manager = f'{where}/{SYSTEM}_bringup'
-        # the watch is made once the system is up; its node has a name of its own
-        expected = {manager, f'{manager}_watch', f'{where}/publisher', f'{where}/subscriber'}
+        # the transition events are followed once the system is up, on a node of their own
+        states = f'{where}/_{SYSTEM}_bringup_states'
+        expected = {manager, states, f'{where}/publisher', f'{where}/subscriber'}
         assert shared_names(driver, expected) == [], sorted(node_names(driver))
         bringup.proc.send_signal(signal.SIGINT)
         assert bringup.proc.wait(timeout=60) == 0, bringup.output()
@@ -85,7 +88,7 @@ def test_a_name_given_to_the_manager_names_its_node_only(test_workspace_built):
                   '__node:=site_manager') as bringup, LifecycleDriver(domain_id) as driver:
         assert wait_until(lambda: 'bringup: 2 of 2 managed instances active' in
                           bringup.output(), timeout=90), bringup.output()
-        expected = {'/site_manager', '/site_manager_watch', '/publisher', '/subscriber'}
+        expected = {'/site_manager', '/_site_manager_states', '/publisher', '/subscriber'}
         assert shared_names(driver, expected) == [], sorted(node_names(driver))
         assert f'/{SYSTEM}_bringup' not in node_names(driver)
         bringup.proc.send_signal(signal.SIGINT)
