@@ -119,18 +119,23 @@ def test_a_system_switched_between_its_modes_and_watched(test_workspace_built):
             _switch(driver, mode, reached)
             _in_mode(driver, mode)
 
-        # a switch asked for during another is refused, with the reason
+        # a switch asked for during another is refused, with the reason: the first
+        # one lasts (slam takes 3 s to activate), the second is asked meanwhile
         from std_srvs.srv import Trigger
+        assert driver.set_parameters('/slam', {'hold': 3.0}) == {'hold': (True, '')}
         clients = [driver.node.create_client(Trigger, f'{MANAGER}/set_mode/{m}')
                    for m in ('mapping', 'cruising')]
         assert all(c.wait_for_service(timeout_sec=10) for c in clients)
-        futures = [c.call_async(Trigger.Request()) for c in clients]
-        assert wait_until(lambda: (driver.spin(0.02), all(f.done() for f in futures))[1], 30)
-        answers = [f.result() for f in futures]
-        refused = [a for a in answers if not a.success]
-        assert len(refused) == 1, [a.message for a in answers]
-        assert refused[0].message.startswith("refused: the switch to '"), refused[0].message
-        assert 'is under way' in refused[0].message
+        first = clients[0].call_async(Trigger.Request())
+        assert wait_until(lambda: 'switching to mapping' in _trigger(driver, 'report').message,
+                          10)
+        second = clients[1].call_async(Trigger.Request())
+        assert wait_until(lambda: (driver.spin(0.02), second.done())[1], 10)
+        assert not second.result().success
+        assert second.result().message == "refused: the switch to 'mapping' is under way"
+        assert wait_until(lambda: (driver.spin(0.02), first.done())[1], 30)
+        assert first.result().success, first.result().message
+        assert driver.set_parameters('/slam', {'hold': 0.0}) == {'hold': (True, '')}
         _switch(driver, 'docking', reached)
         _in_mode(driver, 'docking')
 
