@@ -60,21 +60,6 @@ SHOWN_WITHIN = 2.0
 #: red and green of page.css, as the browser computes them
 RED, GREEN = 'rgb(176, 0, 32)', 'rgb(46, 125, 50)'
 
-_FOREIGN = """
-import rclpy
-from std_msgs.msg import String
-rclpy.init()
-node = rclpy.create_node('intruder')
-publisher = node.create_publisher(String, '/dummy_robot/joint_states', 10)
-node.create_timer(0.1, lambda: publisher.publish(String(data='x')))
-print('ready', flush=True)
-try:
-    rclpy.spin(node)
-except KeyboardInterrupt:
-    node.destroy_node()
-    rclpy.try_shutdown()
-"""
-
 
 @pytest.fixture(scope='module')
 def browser() -> Iterator[object]:
@@ -155,7 +140,10 @@ def test_the_page_draws_the_model_and_colours_it_with_what_runs(
             '.dataset.state', name) in ('active', 'running') for name in instances)
 
         # a foreign type on the connection's topic: red within 2 s of the manager's line
-        with background([sys.executable, '-c', _FOREIGN], env=env, stop_timeout=10) as helper:
+        from test_watch import PUBLISH_STRING
+        # another type than the model's on joint_states, until SIGINT
+        foreign = PUBLISH_STRING.format(node='intruder', topic='/dummy_robot/joint_states')
+        with background([sys.executable, '-c', foreign], env=env, stop_timeout=10) as helper:
             assert wait_until(lambda: 'ready' in helper.output(), timeout=60), helper.output()
             assert wait_until(lambda: ': difference: ' in manager.output() and
                               'node /intruder' in manager.output(), timeout=30, period=0.02), \

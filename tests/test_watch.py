@@ -143,7 +143,8 @@ def test_a_steady_run_reports_no_difference(running):
         assert check.stdout == '', check.stdout
 
 
-_PUBLISH_STRING = """
+#: publishes a String on a topic until SIGINT: format with node and topic
+PUBLISH_STRING = """
 import rclpy
 from std_msgs.msg import String
 rclpy.init()
@@ -164,7 +165,7 @@ def test_a_foreign_type_on_a_modelled_topic_is_reported_and_cleared(running):
     built = running.built
     where = _line_of(built, 'dummy_robot_bringup',
                      '{from: joints.joint_states, to: monitor.joint_states')
-    intruder = _PUBLISH_STRING.format(node='intruder', topic='/dummy_robot/joint_states')
+    intruder = PUBLISH_STRING.format(node='intruder', topic='/dummy_robot/joint_states')
     since = running.mark()  # before the helper: a report may come before its 'ready'
     with running.helper(intruder):
         line = running.reported('dummy_robot_bringup', since, 'difference', where,
@@ -357,7 +358,7 @@ def test_a_misspelt_name_outside_the_model_is_reported_with_the_near_name(
         state.reported(system, since, 'difference', where,
                        r'/outside/words has no publisher$', timeout=120)
         since = state.mark()
-        with state.helper(_PUBLISH_STRING.format(node='outside_talker', topic='/outside/wrods')):
+        with state.helper(PUBLISH_STRING.format(node='outside_talker', topic='/outside/wrods')):
             state.reported(system, since, 'difference', where,
                            '/outside/words has no publisher; /outside/wrods has one, of '
                            'the same type')
@@ -371,7 +372,7 @@ def test_a_misspelt_name_outside_the_model_is_reported_with_the_near_name(
                              'publisher; /outside/wrods has one', check.stdout,
                              re.MULTILINE), check.stdout
             since = state.mark()
-            talker = _PUBLISH_STRING.format(node='outside_talker', topic='/outside/words')
+            talker = PUBLISH_STRING.format(node='outside_talker', topic='/outside/words')
             with state.helper(talker):
                 state.reported(system, since, 'cleared', where,
                                '/outside/words has no publisher; /outside/wrods')
