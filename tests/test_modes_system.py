@@ -14,9 +14,13 @@ given), and names the instance that stops a switch halfway.
 
 from __future__ import annotations
 
+import json
+import re
 import signal
 import subprocess
 import sys
+import urllib.error
+import urllib.request
 
 import pytest
 
@@ -78,6 +82,18 @@ def _switch(driver: LifecycleDriver, mode: str, reached: list) -> list[str]:
     return steps[:-1]
 
 
+def _press(address: str, mode: str, token: str) -> tuple[int, dict | None]:
+    """Ask the page for a mode as its button does; return the status and the answer."""
+    request = urllib.request.Request(
+        f'{address}action/mode', data=json.dumps({'mode': mode}).encode(), method='POST',
+        headers={'Content-Type': 'application/json', 'X-Robmosys-Token': token})
+    try:
+        with urllib.request.urlopen(request, timeout=60) as response:
+            return response.status, json.loads(response.read())
+    except urllib.error.HTTPError as error:
+        return error.code, None
+
+
 def _check(built, domain_id: int, *options: str) -> tuple[int, list[str]]:
     executable = built.install / SYSTEM / 'lib' / SYSTEM / 'bringup'
     check = subprocess.run([sys.executable, str(executable), '--check', '--check-wait', '5',
@@ -91,7 +107,7 @@ def test_a_system_switched_between_its_modes_and_watched(test_workspace_built):
     built = test_workspace_built
     domain_id = free_domain_id()
     executable = built.install / SYSTEM / 'lib' / SYSTEM / 'bringup'
-    with background([sys.executable, str(executable), '--check-period', '0.5'],
+    with background([sys.executable, str(executable), '--check-period', '0.5', '--web', '0'],
                     env=built.env(domain_id), stop_timeout=30) as bringup, \
             LifecycleDriver(domain_id) as driver:
         # the instances the mode leaves out are configured, and not counted
@@ -118,6 +134,16 @@ def test_a_system_switched_between_its_modes_and_watched(test_workspace_built):
         for mode in ('docking', 'mapping', 'cruising', 'docking'):
             _switch(driver, mode, reached)
             _in_mode(driver, mode)
+        # the page's button for a mode asks the same switch, with the token only
+        page = re.search(r'the page of the system: (http://[^/]+/)\?token=(\S+)',
+                         bringup.output())
+        assert page, bringup.output()
+        assert _press(page[1], 'mapping', 'not-the-token') == (403, None)
+        status, answer = _press(page[1], 'mapping', page[2])
+        assert status == 200 and answer['success'], answer
+        _in_mode(driver, 'mapping')
+        _switch(driver, 'docking', reached)
+        _in_mode(driver, 'docking')
 
         # a switch asked for during another is refused, with the reason: the first
         # one lasts (slam takes 3 s to activate), the second is asked meanwhile
