@@ -15,6 +15,8 @@ given), and names the instance that stops a switch halfway.
 from __future__ import annotations
 
 import json
+import os
+from pathlib import Path
 import re
 import signal
 import subprocess
@@ -82,6 +84,19 @@ def _switch(driver: LifecycleDriver, mode: str, reached: list) -> list[str]:
     return steps[:-1]
 
 
+def _process_of(parent: int, argument: str) -> int:
+    """Return the pid of a child of parent whose command line has an argument."""
+    for proc in Path('/proc').iterdir():
+        try:
+            status = (proc / 'status').read_text()
+            command = (proc / 'cmdline').read_bytes().split(b'\0')
+        except OSError:
+            continue
+        if f'PPid:\t{parent}\n' in status and argument.encode() in command:
+            return int(proc.name)
+    raise AssertionError(f'no process of {parent} with {argument}')
+
+
 def _press(address: str, mode: str, token: str) -> tuple[int, dict | None]:
     """Ask the page for a mode as its button does; return the status and the answer."""
     request = urllib.request.Request(
@@ -141,6 +156,14 @@ def test_a_system_switched_between_its_modes_and_watched(test_workspace_built):
         assert _press(page[1], 'mapping', 'not-the-token') == (403, None)
         status, answer = _press(page[1], 'mapping', page[2])
         assert status == 200 and answer['success'], answer
+        _in_mode(driver, 'mapping')
+        # slam's process ends, and is started again (respawn): it comes back with
+        # the mode's values, not those it was started with, and active
+        mark = len(bringup.output())
+        os.kill(_process_of(bringup.proc.pid, '__node:=slam'), signal.SIGKILL)
+        assert wait_until(lambda: 'instance slam is active again' in bringup.output()[mark:] or
+                          'instance slam is active' in bringup.output()[mark:], 60), \
+            bringup.output()[mark:]
         _in_mode(driver, 'mapping')
         _switch(driver, 'docking', reached)
         _in_mode(driver, 'docking')

@@ -75,6 +75,8 @@ class Modes:
         #: the values each node holds, as far as the manager set them (first the system's)
         self._held = {i['instance']: {p['name']: p['value'] for p in i.get('parameters', ())}
                       for i in instances}
+        #: the system's values, those a node is started with
+        self._system = {name: dict(values) for name, values in self._held.items()}
         self.mode = mode
         #: the mode a switch under way goes to ('' for none)
         self.switching = ''
@@ -103,7 +105,14 @@ class Modes:
         return f'mode: {self.mode}' + (f' (not reached: {self.problem})' if self.problem else '')
 
     def _configured(self, name: str) -> None:
-        """Give an instance configured at bring-up the values of the mode (before it is active)."""
+        """
+        Give an instance configured the values of the mode, before it is active.
+
+        At bring-up, and when it was started again (a respawn, ``~/bring_up`` after
+        its process ended): it then holds the system's values, which it was started
+        with, whatever the manager set before.
+        """
+        self._held[name] = dict(self._system.get(name, {}))
         changed = {p: v for p, v in self.values().get(name, {}).items()
                    if self._held.get(name, {}).get(p) != v}
         if changed:
