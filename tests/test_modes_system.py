@@ -231,6 +231,14 @@ def test_a_system_switched_between_its_modes_and_watched(test_workspace_built):
             'mode: mapping (not reached: instance slam failed to activate (it is inactive))')
         assert 'slam: failed (failed to activate (it is inactive))' in lines, lines
         assert driver.state('/slam') == 'inactive' and driver.state('/driver') == 'active'
+        # repaired, ~/bring_up finishes the switch: the report says the mode is reached
+        assert driver.set_parameters('/slam', {'refuse': False}) == {'refuse': (True, '')}
+        answer = _trigger(driver, 'bring_up')
+        assert answer.success, answer.message
+        _in_mode(driver, 'mapping')
+        report = _trigger(driver, 'report')
+        assert report.success and report.message.splitlines()[0] == 'mode: mapping', \
+            report.message
 
         bringup.proc.send_signal(signal.SIGINT)
         assert bringup.proc.wait(timeout=60) == 0, bringup.output()

@@ -81,6 +81,21 @@ class ModedManager(Manager):
             self._expect(watch)
         return response
 
+    def _bring_up(self, request: Any, response: Any) -> Any:
+        """
+        Bring the system up in its mode; after a switch that stopped, finish that switch.
+
+        The instances come up as the mode has them; then the steps of the switch
+        that did not happen (values not set, instances not activated) are made,
+        and ``~/report`` no longer says the mode was not reached.
+        """
+        response = super()._bring_up(request, response)
+        if self._made and response.success and self.modes.problem:
+            done, steps = self.modes.switch(self.modes.mode)
+            response.success = done
+            response.message += f'\nmode {self.modes.mode}: ' + ', '.join(steps.splitlines())
+        return response
+
     def page_hooks(self) -> Dict[str, Any]:
         """Return what the page (system/page.py's serve_page) shows of the modes, and asks."""
         def switch(arguments: Dict[str, Any]) -> Tuple[bool, str]:
