@@ -26,6 +26,7 @@ import bench_colcon  # noqa: E402
 import bench_cppbuild  # noqa: E402
 import bench_generation  # noqa: E402
 import bench_messages  # noqa: E402
+import bench_modes  # noqa: E402
 import bench_page  # noqa: E402
 import bench_runtime  # noqa: E402
 import bench_watch  # noqa: E402
@@ -202,6 +203,19 @@ def test_page_benchmark_prints_the_cost_of_the_page(capsys):
                      r'\((met|NOT met)', out, re.MULTILINE), out
     assert len(re.findall(r'round 1, (page|none): \d+\.\d\d % of one CPU', out)) == 2, out
     assert re.search(r'^\| 2 +(\| -?\d+\.\d\d +){3}\| (met|NOT met)', out, re.MULTILINE), out
+
+
+@requires_ros
+def test_modes_benchmark_prints_the_switch_against_its_steps_and_the_floor(
+        test_workspace_built, capsys):
+    """A switch through the manager, the same steps with rclpy, and the manager's call."""
+    assert bench_modes.main(['--install', str(test_workspace_built.install),
+                             '--rounds', '2']) == 0
+    out = capsys.readouterr().out
+    assert re.search(r'^manager / direct: \d+\.\d\dx \(goal: at most 1\.2x\): (met|NOT met)$',
+                     out, re.MULTILINE), out
+    assert re.search(r'^manager / \(direct \+ two calls of the manager\): \d+\.\d\dx; '
+                     r'per round, median: \d+\.\d\dx$', out, re.MULTILINE), out
 
 
 @requires_ros
