@@ -122,7 +122,8 @@ def test_a_system_switched_between_its_modes_and_watched(test_workspace_built):
     built = test_workspace_built
     domain_id = free_domain_id()
     executable = built.install / SYSTEM / 'lib' / SYSTEM / 'bringup'
-    with background([sys.executable, str(executable), '--check-period', '0.5', '--web', '0'],
+    with background([sys.executable, str(executable), '--check-period', '0.5', '--web', '0',
+                     '--heartbeat', '0.5'],
                     env=built.env(domain_id), stop_timeout=30) as bringup, \
             LifecycleDriver(domain_id) as driver:
         # the instances the mode leaves out are configured, and not counted
@@ -185,6 +186,9 @@ def test_a_system_switched_between_its_modes_and_watched(test_workspace_built):
         assert wait_until(lambda: (driver.spin(0.02), first.done())[1], 30)
         assert first.result().success, first.result().message
         assert driver.set_parameters('/slam', {'hold': 0.0}) == {'hold': (True, '')}
+        # the heartbeat that asked while slam held the switch said nothing of what
+        # the switch did meanwhile (arm.wrist, activated right after slam)
+        assert 'not active (heartbeat)' not in bringup.output(), bringup.output()
         _switch(driver, 'docking', reached)
         _in_mode(driver, 'docking')
 

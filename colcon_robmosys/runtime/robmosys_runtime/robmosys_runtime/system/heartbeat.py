@@ -80,12 +80,18 @@ class Heartbeat:
                     return
                 if self._activation.running() or not self._up():
                     continue
-                names = list(self._activation.states())
+                believed = self._activation.states()
+                names = list(believed)
                 answers = dict(zip(names, pool.map(
                     lambda name: self._activation.probe(name, timeout=self.period), names)))
+                now = self._activation.states()
                 # failed since it was asked (its transition event came first) or not
-                failed = {n for n, s in self._activation.states().items() if s == 'failed'}
-                if not stopping.is_set() and not self._activation.running():
+                failed = {n for n, s in now.items() if s == 'failed'}
+                # one that the manager took through a transition meanwhile (a mode's
+                # switch) answered what it was before: no word about it from this beat
+                answers = {n: a for n, a in answers.items()
+                           if now.get(n) == believed[n] or n in failed}
+                if not stopping.is_set() and not self._activation.running() and self._up():
                     self.heard(answers, failed)
 
     def heard(self, answers: Dict[str, Optional[str]],

@@ -155,7 +155,7 @@ class Manager:
         self.drift = Drift(self.activation, self.steady)
         if args.heartbeat > 0:
             heartbeat = Heartbeat(self.activation, args.heartbeat, self._silent, self.instances,
-                                  set(self._group_of), lambda: self.up, self.drift)
+                                  set(self._group_of), self.steady, self.drift)
             threading.Thread(target=heartbeat.run, args=(self.stopping,), daemon=True,
                              name='heartbeat').start()
         #: the conformance watch, once the first bring-up is over (see _watch)

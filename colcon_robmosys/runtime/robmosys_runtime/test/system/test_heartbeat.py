@@ -177,3 +177,37 @@ def test_failed_instances_are_asked_too(monkeypatch):
         stopping.set()
         beating.join(5)
     assert 'local' in {name for name, _ in instances.asked}
+
+
+class Switched(Instances):
+    """An instance activated by the manager (a mode's switch) while the heartbeat asked it."""
+
+    def __init__(self) -> None:
+        super().__init__({'wrist': 'inactive'})
+        self.believed = 'inactive'
+
+    def states(self):
+        return {'wrist': self.believed}
+
+    def probe(self, name, timeout):
+        answer = super().probe(name, timeout)
+        # the switch took it through activate meanwhile: from now on it answers so
+        self.believed = self.answers[name] = 'active'
+        return answer
+
+
+def test_an_answer_older_than_a_transition_the_manager_made_meanwhile_says_nothing(
+        monkeypatch):
+    said = []
+    monkeypatch.setattr(heartbeat, 'say', lambda level, text: said.append((level, text)))
+    monkeypatch.setattr(drift, 'say', lambda level, text: said.append((level, text)))
+    instances = Switched()
+    stopping = threading.Event()
+    beating = threading.Thread(target=_beat(instances, {}).run, args=(stopping,))
+    beating.start()
+    assert wait_until(lambda: len(instances.asked) >= 2)
+    stopping.set()
+    beating.join(5)
+    # the first beat's answer, 'inactive', came from before the activation
+    assert 'wrist' not in instances.failed, said
+    assert not [s for s in said if s[0] == 'error'], said
