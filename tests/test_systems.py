@@ -174,7 +174,7 @@ def test_launch_file_follows_the_system_model(generated, launch_file):
         assert set(node.remappings) == remappings[model.name]
         assert len(node.remappings) == len(remappings[model.name]), 'a port remapped twice'
         assert node.params_files == (share / 'cfg' / 'params.yaml',)
-        assert node.extra == LAUNCH_EXTRA
+        assert node.extra == {**LAUNCH_EXTRA, **({'respawn': True} if model.respawn else {})}
 
 
 @pytest.mark.parametrize('launch_file', [f for f in LAUNCH_FILES if '.nodes.' not in f])
