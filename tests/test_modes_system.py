@@ -26,11 +26,15 @@ import urllib.request
 
 import pytest
 
+from colcon_robmosys.devtools import workspace
 from colcon_robmosys.devtools.ros_env import background, free_domain_id
 from colcon_robmosys.devtools.system import LifecycleDriver, wait_until
 from conftest import assert_no_traceback, requires_ros
 
-pytestmark = [pytest.mark.integration, requires_ros]
+pytestmark = [pytest.mark.integration, requires_ros, pytest.mark.skipif(
+    workspace.venv_distribution() == 'jazzy',
+    reason='on Jazzy a request to the manager during a switch is not answered in time '
+    '(issue 42, open): this test runs on Kilted')]
 
 SYSTEM = 'mode_robot_system'
 MANAGER = f'/{SYSTEM}_bringup'
