@@ -267,6 +267,37 @@ def system_beside(install: Path, size: int, timeout: float) -> Iterator[str]:
             _BESIDE.discard(domain_id)
 
 
+@contextlib.contextmanager
+def system_up(install: Path, system: str, description: Path, count: int,
+              options: Sequence[str], timeout: float
+              ) -> Iterator[tuple[subprocess.Popen[bytes], IO[bytes]] | None]:
+    """
+    Run a system's bringup until its ``count`` managed instances are active.
+
+    Bringup runs with ``--description`` and ``options``, in a domain of its
+    own. Yield its process and the file of its output, or None (the end of
+    its output written to stderr) when it did not come up within ``timeout``
+    seconds; it is ended as Ctrl-C ends it after the block.
+    """
+    env = ros_env.workspace_env(install, ros_env.loopback_env(_domain_id()))
+    env[MARKER] = f'{os.getpid()}-{time.monotonic_ns()}'
+    executable = install / system / 'lib' / system / 'bringup'
+    with tempfile.TemporaryFile() as log:
+        process = subprocess.Popen(
+            [sys.executable, str(executable), '--description', str(description), *options],
+            env=env, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+            start_new_session=True)
+        try:
+            outcome, _, output = _watch(log, process, time.monotonic(), timeout,
+                                        f'bringup: {count} of {count} managed instances '
+                                        'active', 'managed instances active')
+            if outcome != 'up':
+                sys.stderr.write(output[-3000:])
+            yield (process, log) if outcome == 'up' else None
+        finally:
+            end_run(process, env[MARKER])
+
+
 def _ended(marker: str, since: float) -> float:
     """Wait until no process of a run is left; return the seconds since ``since``."""
     deadline = time.monotonic() + BRING_DOWN_BOUND

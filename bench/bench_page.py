@@ -36,10 +36,9 @@ import tempfile
 import time
 from typing import Sequence
 
-from bench_bringup import _watch, end_run, MARKER, subset, system_package, write_workspace
+from bench_bringup import subset, system_package, system_up, write_workspace
 from bench_runtime import build
 from benchlib import best, cpu_seconds, print_end, print_machine, spread, table
-from colcon_robmosys.devtools import ros_env
 from colcon_robmosys.runtime import runtime_module
 
 #: the goal: the page's cost at 50 instances, in % of one CPU
@@ -58,25 +57,14 @@ with urllib.request.urlopen(sys.argv[1] + '/events', timeout=3600) as stream:
 def manager_cpu(install: Path, system: str, description: Path, count: int, clients: int | None,
                 *, settle: float, window: float, timeout: float) -> float | None:
     """Bring a system up, with its page and clients or without; its manager's CPU per second."""
-    env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
-    env[MARKER] = f'{os.getpid()}-{time.monotonic_ns()}'
-    executable = install / system / 'lib' / system / 'bringup'
-    done = f'bringup: {count} of {count} managed instances active'
-    page = ['--web', '0'] if clients is not None else []
+    options = ['--shared', '--check-period', '1', '--start-timeout', '90']
+    options += ['--web', '0'] if clients is not None else []
     readers: list[subprocess.Popen[bytes]] = []
-    with tempfile.TemporaryFile() as log:
-        start = time.monotonic()
-        process = subprocess.Popen(
-            [sys.executable, str(executable), '--description', str(description), '--shared',
-             '--check-period', '1', '--start-timeout', '90', *page],
-            env=env, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-            start_new_session=True)
+    with system_up(install, system, description, count, options, timeout) as up:
+        if up is None:
+            return None
+        process, log = up
         try:
-            outcome, _, output = _watch(log, process, start, timeout, done,
-                                        'managed instances active')
-            if outcome != 'up':
-                sys.stderr.write(output[-3000:])
-                return None
             if clients:
                 # said once the manager's node is made: after the instances' report
                 # where the shared processes told they are up
@@ -99,7 +87,6 @@ def manager_cpu(install: Path, system: str, description: Path, count: int, clien
             for reader in readers:
                 reader.kill()
                 reader.wait()
-            end_run(process, env[MARKER])
 
 
 def page_work(size: int, clients: int, periods: int) -> float:

@@ -20,16 +20,13 @@ from __future__ import annotations
 import argparse
 import os
 from pathlib import Path
-import subprocess
-import sys
 import tempfile
 import time
 from typing import Sequence
 
-from bench_bringup import _watch, end_run, MARKER, subset, system_package, write_workspace
+from bench_bringup import subset, system_package, system_up, write_workspace
 from bench_runtime import build
 from benchlib import best, cpu_seconds, print_end, print_machine, spread, table
-from colcon_robmosys.devtools import ros_env
 from watch_hosts import run as run_on_hosts
 
 #: the goal: the watch's cost at 50 instances, in % of one CPU
@@ -39,36 +36,22 @@ GOAL = 2.0
 def manager_cpu(install: Path, system: str, description: Path, count: int, period: float, *,
                 settle: float, window: float, timeout: float, layout: str) -> float | None:
     """Bring a system up, measure its manager's CPU per second, bring it down; None if not up."""
-    env = ros_env.workspace_env(install, ros_env.loopback_env(ros_env.free_domain_id()))
-    env[MARKER] = f'{os.getpid()}-{time.monotonic_ns()}'
-    executable = install / system / 'lib' / system / 'bringup'
-    done = f'bringup: {count} of {count} managed instances active'
-    with tempfile.TemporaryFile() as log:
-        start = time.monotonic()
-        process = subprocess.Popen(
-            [sys.executable, str(executable), '--description', str(description),
-             f'--{layout}', '--check-period', str(period), '--start-timeout', '90'],
-            env=env, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-            start_new_session=True)
-        try:
-            outcome, _, output = _watch(log, process, start, timeout, done,
-                                        'managed instances active')
-            if outcome != 'up':
-                sys.stderr.write(output[-3000:])
-                return None
-            time.sleep(settle)
-            before, at = cpu_seconds(process.pid), time.monotonic()
-            time.sleep(window)
-            used = (cpu_seconds(process.pid) - before) / (time.monotonic() - at)
-            output = os.pread(log.fileno(), os.fstat(log.fileno()).st_size, 0).decode(
-                errors='replace')
-            if ': difference: ' in output:
-                # the benchmark's system is as its model: a difference is a false alarm
-                print('  the watch reported a difference:\n' + '\n'.join(
-                    line for line in output.splitlines() if ': difference: ' in line))
-            return used
-        finally:
-            end_run(process, env[MARKER])
+    options = [f'--{layout}', '--check-period', str(period), '--start-timeout', '90']
+    with system_up(install, system, description, count, options, timeout) as up:
+        if up is None:
+            return None
+        process, log = up
+        time.sleep(settle)
+        before, at = cpu_seconds(process.pid), time.monotonic()
+        time.sleep(window)
+        used = (cpu_seconds(process.pid) - before) / (time.monotonic() - at)
+        output = os.pread(log.fileno(), os.fstat(log.fileno()).st_size, 0).decode(
+            errors='replace')
+        if ': difference: ' in output:
+            # the benchmark's system is as its model: a difference is a false alarm
+            print('  the watch reported a difference:\n' + '\n'.join(
+                line for line in output.splitlines() if ': difference: ' in line))
+        return used
 
 
 def main(argv: Sequence[str] | None = None) -> int:

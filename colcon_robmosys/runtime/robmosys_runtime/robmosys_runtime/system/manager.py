@@ -12,16 +12,14 @@ and offers operators services and ``/diagnostics``; ``ros2 run <system> bringup`
 from __future__ import annotations
 
 import argparse
-import functools
 import threading
-import traceback
-from typing import Any, Callable, Dict, Optional, TypeVar
+from typing import Any, Dict, Optional
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup
 from rclpy.executors import Executor
 from rclpy.node import Node
-from robmosys_runtime.hosting.output import say
+from robmosys_runtime.hosting.output import failure_text, guarded, say
 from robmosys_runtime.hosting.processes import Groups, plan_processes, shared_python
 from robmosys_runtime.hosting.reports import GRACE, Reports
 from robmosys_runtime.hosting.supervision import Processes
@@ -32,45 +30,6 @@ from robmosys_runtime.system.heartbeat import Heartbeat
 from robmosys_runtime.system.levels import report
 from robmosys_runtime.watch.watcher import Watch, watch_diagnostics
 from std_srvs.srv import Trigger
-
-
-def failure_text(error: BaseException) -> str:
-    """Return one line of an exception: what it is, and where it was raised."""
-    frames = traceback.extract_tb(error.__traceback__)
-    where = f' (at {frames[-1].filename}:{frames[-1].lineno})' if frames else ''
-    return f'{type(error).__name__}: {error}{where}'
-
-
-Callback = TypeVar('Callback', bound=Callable[..., Any])
-
-
-def guarded(what: str, callback: Callback) -> Callback:
-    """
-    Wrap a callback of the manager: an exception is reported, not raised.
-
-    rclpy raises a callback's exception out of ``spin``, and the thread that spun the
-    manager ended with it: every service went unanswered and every instance 'did not tell
-    its state'. A service (std_srvs/Trigger) answers with ``success`` false and the
-    exception as its message; any other callback reports each distinct failure once.
-    """
-    told = set()
-
-    @functools.wraps(callback)
-    def call(*args: Any) -> Any:
-        try:
-            return callback(*args)
-        except Exception as error:  # noqa: B902 - the manager serves on
-            text = f'{what} failed: {failure_text(error)}'
-            if text not in told:
-                told.add(text)
-                say('error', text)
-            if len(args) == 2 and hasattr(args[1], 'success'):
-                response = args[1]
-                response.success = False
-                response.message = text
-                return response
-            return None
-    return call  # type: ignore[return-value]
 
 
 def serve(executor: Executor) -> None:
@@ -214,9 +173,13 @@ class Manager:
         watch = Watch(self.node, self.description, period=self._args.check_period,
                       silence=self._args.silence, sends=Sends(sends) if sends else None,
                       started=set(self._group_of))
+        self._expect(watch)
         self.watch = watch
         watch.run(self.stopping, lambda: self.drift.states_for_watch(self.states()),
-                  lambda: self.up and not self.activation.running())
+                  lambda: self.steady() and not self.activation.running())
+
+    def _expect(self, watch: Watch) -> None:
+        """Tell the watch what it compares with besides the model (moded.py: the mode)."""
 
     # what operators see
 

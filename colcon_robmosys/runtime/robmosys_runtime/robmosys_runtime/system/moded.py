@@ -28,9 +28,8 @@ from typing import Any, Dict, Tuple
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.node import Node
-from robmosys_runtime.hosting.output import say
-from robmosys_runtime.sends import Sends
-from robmosys_runtime.system.manager import guarded, Manager
+from robmosys_runtime.hosting.output import guarded, say
+from robmosys_runtime.system.manager import Manager
 from robmosys_runtime.system.modes import Modes
 from robmosys_runtime.watch.watcher import Watch
 from std_srvs.srv import Trigger
@@ -104,19 +103,6 @@ class ModedManager(Manager):
             return bool(answer.success), str(answer.message)
         return {'extra': {'mode': switch}, 'mode': lambda: self.modes.mode,
                 'modes': lambda: list(self.modes.modes)}
-
-    def _watch(self) -> None:
-        """Make the conformance watch once the bring-up is over; it compares with the mode."""
-        if not self._brought_up():
-            return
-        sends = self.processes.sends  # as Manager._watch makes it
-        watch = Watch(self.node, self.description, period=self._args.check_period,
-                      silence=self._args.silence, sends=Sends(sends) if sends else None,
-                      started=set(self._group_of))
-        self._expect(watch)
-        self.watch = watch
-        watch.run(self.stopping, lambda: self.drift.states_for_watch(self.states()),
-                  lambda: self.steady() and not self.activation.running())
 
     def _expect(self, watch: Watch) -> None:
         """Have the watch compare with the mode the system is in (or switches to)."""

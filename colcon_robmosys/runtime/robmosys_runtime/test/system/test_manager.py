@@ -9,8 +9,10 @@ import time
 from conftest import answer, wait_until
 import rclpy
 from rclpy.executors import MultiThreadedExecutor, SingleThreadedExecutor
+from robmosys_runtime.hosting import output
+from robmosys_runtime.hosting.output import guarded
 from robmosys_runtime.system import manager
-from robmosys_runtime.system.manager import guarded, serve
+from robmosys_runtime.system.manager import serve
 from std_srvs.srv import Trigger
 
 
@@ -52,7 +54,8 @@ def _fine(request, response):
 
 def test_a_failing_service_is_answered_reported_and_the_others_serve_on(monkeypatch):
     said = []
-    monkeypatch.setattr(manager, 'say', lambda level, text: said.append((level, text)))
+    for module in (manager, output):  # guarded's and serve's
+        monkeypatch.setattr(module, 'say', lambda level, text: said.append((level, text)))
     context = rclpy.Context()
     rclpy.init(context=context)
     served = Served(context)
@@ -89,7 +92,8 @@ def test_a_failing_service_is_answered_reported_and_the_others_serve_on(monkeypa
 
 def test_a_failing_timer_callback_is_reported_once(monkeypatch):
     said = []
-    monkeypatch.setattr(manager, 'say', lambda level, text: said.append((level, text)))
+    for module in (manager, output):  # guarded's and serve's
+        monkeypatch.setattr(module, 'say', lambda level, text: said.append((level, text)))
     calls = []
 
     def publish():
@@ -141,7 +145,8 @@ def test_the_ros_arguments_are_the_manager_s_own_as_rcl_reads_them():
 def test_each_service_answers_from_the_moment_it_exists(monkeypatch):
     """The manager's node spins while the manager is made: no service sees it half made."""
     said = []
-    monkeypatch.setattr(manager, 'say', lambda level, text: said.append((level, text)))
+    for module in (manager, output):  # guarded's and serve's
+        monkeypatch.setattr(module, 'say', lambda level, text: said.append((level, text)))
     context = rclpy.Context()
     rclpy.init(context=context)
     node = rclpy.create_node('system_bringup', context=context)
