@@ -14,6 +14,7 @@ given), and names the instance that stops a switch halfway.
 
 from __future__ import annotations
 
+from collections import Counter
 import json
 import os
 from pathlib import Path
@@ -63,24 +64,38 @@ def _in_mode(driver: LifecycleDriver, mode: str) -> None:
         assert driver.parameters(NODES[name], list(values)) == values, (mode, name)
 
 
-def _switch(driver: LifecycleDriver, mode: str, reached: list) -> list[str]:
-    """Switch to a mode; return the steps its answer lists."""
+def _switch(driver: LifecycleDriver, mode: str, events: tuple) -> list[str]:
+    """
+    Switch to a mode; return the steps its answer lists.
+
+    :param events: a driver that only listens, and the transitions it collects
+      (:meth:`LifecycleDriver.watch_transitions`): on Jazzy, transition events
+      reached the driver that made the test's calls up to a minute late, or
+      not at all, while a second participant that only listened got them within
+      a second (8 switches of 16 under load, rclpy 7.1.6: the manager had
+      switched and answered). Issue 42's notes.
+    """
+    listener, reached = events
     # the events of the last transitions may still be on their way
-    wait_until(lambda: (driver.spin(0.05), False)[1], 0.5)
+    wait_until(lambda: (listener.spin(0.05), False)[1], 0.5)
     del reached[:]
     answer = _trigger(driver, f'set_mode/{mode}')
     assert answer.success, answer.message
     steps = answer.message.splitlines()
     assert steps[-1] == f'mode: {mode}'
-    # each transition the answer lists arrives (each node's own events: across
-    # nodes, DDS keeps no order between them; the answer gives the manager's order)
-    assert wait_until(lambda: (driver.spin(0.02), len(
-        [g for _, g in reached if g in ('active', 'inactive')]) == sum(
-        s.startswith(('activate', 'deactivate')) for s in steps))[1], 10), (reached, steps)
+    # each transition the answer lists arrives, and no other (each node's own
+    # events: across nodes, DDS keeps no order between them; the answer gives
+    # the manager's order)
     fqn = {v: k for k, v in NODES.items()}
-    assert sorted(f"{'activate' if goal == 'active' else 'deactivate'} {fqn[node]}"
-                  for node, goal in reached if goal in ('active', 'inactive')) == sorted(
-        s for s in steps if s.startswith(('activate', 'deactivate')))
+    listed = sorted(s for s in steps if s.startswith(('activate', 'deactivate')))
+
+    def arrived() -> list[str]:
+        listener.spin(0.02)
+        return sorted(f"{'activate' if goal == 'active' else 'deactivate'} {fqn[node]}"
+                      for node, goal, _ in reached if goal in ('active', 'inactive'))
+    assert wait_until(lambda: not Counter(listed) - Counter(arrived()), 10), \
+        (arrived(), listed, reached)
+    assert arrived() == listed, (arrived(), listed, reached)
     return steps[:-1]
 
 
@@ -125,7 +140,7 @@ def test_a_system_switched_between_its_modes_and_watched(test_workspace_built):
     with background([sys.executable, str(executable), '--check-period', '0.5', '--web', '0',
                      '--heartbeat', '0.5'],
                     env=built.env(domain_id), stop_timeout=30) as bringup, \
-            LifecycleDriver(domain_id) as driver:
+            LifecycleDriver(domain_id) as driver, LifecycleDriver(domain_id) as listener:
         # the instances the mode leaves out are configured, and not counted
         assert wait_until(lambda: 'bringup: 2 of 2 managed instances active' in
                           bringup.output(), timeout=90), bringup.output()
@@ -133,7 +148,7 @@ def test_a_system_switched_between_its_modes_and_watched(test_workspace_built):
         report = _trigger(driver, 'report')
         assert report.success and report.message.splitlines()[0] == 'mode: docking', \
             report.message
-        reached = driver.watch_transitions(list(NODES.values()))
+        reached = (listener, listener.watch_transitions(list(NODES.values())))
         # the subscriptions match before the first switch
         wait_until(lambda: (driver.spin(0.05), False)[1], 1.0)
 
@@ -166,6 +181,10 @@ def test_a_system_switched_between_its_modes_and_watched(test_workspace_built):
                           'instance slam is active' in bringup.output()[mark:], 60), \
             bringup.output()[mark:]
         _in_mode(driver, 'mapping')
+        # the new process's events are not the next switch's: they reach the listener
+        # once its participant is discovered (late under load), or never (before that)
+        wait_until(lambda: (listener.spin(0.05), ('/slam', 'active') in
+                            [(n, g) for n, g, _ in reached[1]])[1], 15)
         _switch(driver, 'docking', reached)
         _in_mode(driver, 'docking')
 
@@ -174,8 +193,8 @@ def test_a_system_switched_between_its_modes_and_watched(test_workspace_built):
         from std_srvs.srv import Trigger
         assert driver.set_parameters('/slam', {'hold': 3.0}) == {'hold': (True, '')}
         # asked by two operators' tools: a participant of their own (on Jazzy, answers
-        # to clients made this late on the driver's long-lived node did not arrive,
-        # while the manager had answered: a new participant got them, 3 runs of 3)
+        # to clients made this late on the driver's node did not arrive, while the
+        # manager had answered: see _switch)
         with LifecycleDriver(domain_id) as operators:
             clients = [operators.node.create_client(Trigger, f'{MANAGER}/set_mode/{m}')
                        for m in ('mapping', 'cruising')]

@@ -5,7 +5,7 @@
 from __future__ import annotations
 
 import os
-from typing import Optional, Sequence
+from typing import Any, Optional, Sequence
 
 from rclpy.executors import Executor, MultiThreadedExecutor, SingleThreadedExecutor
 from rclpy.node import Node
@@ -44,7 +44,29 @@ def make_executor(kind: str, nodes: Sequence[Node] = ()) -> Executor:
         return EventsExecutor()
     if kind == 'single-threaded':
         return SingleThreadedExecutor()
-    return MultiThreadedExecutor(num_threads=executor_threads(nodes))
+    return ThreadsExecutor(num_threads=executor_threads(nodes))
+
+
+class ThreadsExecutor(MultiThreadedExecutor):
+    """
+    rclpy's multi-threaded executor, which skips a timer cancelled after its wait.
+
+    A deactivation cancels a node's activity timers in one of the executor's
+    threads while the spinning thread may have found one of them ready. rclpy
+    9 (Kilted) then skips the timer (TimerCancelledError); rclpy 7.1 (Jazzy)
+    raises 'failed to call timer: timer is canceled' out of spin, which ended
+    the component's process (seen in CI), and leaves the timer's callback
+    group taken for good: the node's lifecycle and parameter services of that
+    group would never be served again. This one skips it too.
+    """
+
+    def _take_timer(self, tmr: Any) -> Any:
+        try:
+            return super()._take_timer(tmr)
+        except RuntimeError as error:  # rclpy's RCLError
+            if 'timer is canceled' not in str(error):
+                raise
+            return None
 
 
 def executor_threads(nodes: Sequence[Node] = ()) -> int:

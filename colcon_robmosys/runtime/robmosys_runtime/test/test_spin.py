@@ -183,7 +183,7 @@ def test_a_process_spins_on_the_executor_its_nodes_need():
 
     import pytest
     from rclpy.executors import MultiThreadedExecutor, SingleThreadedExecutor
-    from robmosys_runtime.executors import executor_kind, make_executor
+    from robmosys_runtime.executors import executor_kind, make_executor, ThreadsExecutor
 
     events, single, multi = (SimpleNamespace(executor_name=name) for name in (
         'events', 'single-threaded', 'multi-threaded'))
@@ -201,6 +201,7 @@ def test_a_process_spins_on_the_executor_its_nodes_need():
     try:
         assert isinstance(make_executor('single-threaded'), SingleThreadedExecutor)
         assert isinstance(make_executor('multi-threaded', [multi]), MultiThreadedExecutor)
+        assert isinstance(make_executor('multi-threaded', [multi]), ThreadsExecutor)
     finally:
         rclpy.try_shutdown()
 
@@ -246,3 +247,31 @@ def _spin_in_thread(spinner, executor):
     thread = threading.Thread(target=run, daemon=True)
     thread.start()
     return thread, ended
+
+
+def test_a_timer_cancelled_after_the_wait_is_skipped_and_its_group_served_on():
+    from robmosys_runtime.executors import ThreadsExecutor
+
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    node = rclpy.create_node('deactivated', context=context)
+    executor = ThreadsExecutor(num_threads=2, context=context)
+    try:
+        ran = []
+        timer = node.create_timer(0.001, lambda: ran.append('activity'))
+        executor.add_node(node)
+        # the spinning thread finds the timer ready; a deactivation cancels it
+        # before it is taken, as another of the executor's threads does
+        handler, entity, _ = executor.wait_for_ready_callbacks(timeout_sec=5.0)
+        assert entity is timer
+        timer.cancel()
+        handler()
+        assert handler.exception() is None and ran == []
+        # the node's default group is free again: its other callbacks run
+        node.create_timer(0.001, lambda: ran.append('next'))
+        assert wait_until(lambda: (executor.spin_once(timeout_sec=0.05), 'next' in ran)[1],
+                          5)
+    finally:
+        executor.shutdown()
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
