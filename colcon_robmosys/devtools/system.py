@@ -184,20 +184,18 @@ class LifecycleDriver:
         self.executor.spin_once(timeout_sec=0.01)
         return future
 
-    def watch_transitions(self, fqns: list[str]) -> list[tuple[str, str, int]]:
+    def watch_transitions(self, fqns: list[str]) -> list[tuple[str, str]]:
         """Return a list that collects, in order, every state the nodes reach from now on.
 
-        Each item is (fully qualified node name, state label, the event's
-        ``timestamp``), from the nodes' ``transition_event`` topics; :meth:`spin`
-        delivers them.
+        Each item is (fully qualified node name, state label), from the nodes'
+        ``transition_event`` topics; :meth:`spin` delivers them.
         """
         from lifecycle_msgs.msg import TransitionEvent
-        reached: list[tuple[str, str, int]] = []
+        reached: list[tuple[str, str]] = []
         for fqn in fqns:
             self.node.create_subscription(
                 TransitionEvent, f'{fqn}/transition_event',
-                lambda msg, fqn=fqn: reached.append((fqn, msg.goal_state.label, msg.timestamp)),
-                100)
+                lambda msg, fqn=fqn: reached.append((fqn, msg.goal_state.label)), 100)
         return reached
 
     def spin(self, seconds: float = 0.1) -> None:
