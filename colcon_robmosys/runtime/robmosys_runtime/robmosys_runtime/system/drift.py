@@ -134,6 +134,16 @@ class Drift:
                 self._activation.instance_failed(name, why, report=False)
                 say('error', f'instance {name} {why} ({how})')
 
+    def ended(self, name: str) -> None:
+        """
+        Forget the state an instance's events told: its process ended.
+
+        Its last event (``inactive``, say) told of a process that is gone; the
+        watch then said ``is inactive`` of an instance that has no process.
+        """
+        if self.events is not None:
+            self.events.forget(name)
+
     def states_for_watch(self, states: Dict[str, str]) -> Dict[str, str]:
         """
         Return states with, for each failed instance, the state its last event told.

@@ -290,6 +290,7 @@ class Manager:
         again = f': starting it again (respawn {self._respawns[group]})' if respawn else ''
         for name in names:
             if name in self.managed:
+                self.drift.ended(name)
                 self.activation.instance_failed(name, f'exited with code {code}{again}')
             else:
                 say('error', f'instance {name} exited with code {code}{again}')

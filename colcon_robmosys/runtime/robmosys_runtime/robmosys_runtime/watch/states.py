@@ -82,6 +82,11 @@ class LifecycleStates:
         with self._lock:
             return dict(self._states)
 
+    def forget(self, name: str) -> None:
+        """Forget what a node told: its process ended, and a new one tells anew."""
+        with self._lock:
+            self._states.pop(name, None)
+
     def close(self) -> None:
         """Destroy the subscriptions (before the node, if it lives on)."""
         for subscription in self._subscriptions:

@@ -77,6 +77,10 @@ def test_a_deactivation_is_a_failure_until_the_instance_is_active_again(
         # the watch is told the state the instance is in
         assert followed.drift.states_for_watch(activation.states()) == {
             'a': 'inactive', 'b': 'active'}
+        # once its process ended, not what the process had told: it has none
+        followed.drift.ended('a')
+        assert followed.drift.states_for_watch(activation.states()) == {
+            'a': 'failed', 'b': 'active'}
         # a later state replaces it
         a.trigger_cleanup()
         assert wait_until(lambda: activation.failures() == {
