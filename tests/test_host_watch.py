@@ -229,15 +229,18 @@ def test_the_watch_adds_nothing_to_the_base_station_link(site):
     assert_no_traceback(manager.output())
 
 
-#: prints the nodes of a topic's subscriptions, once the graph shows its publisher
+#: prints the nodes of a topic's subscriptions, once the graph shows its publisher and a
+#: subscription (on Jazzy under load a participant's endpoints can come seconds after it)
 SUBSCRIPTIONS = """
 import json, sys, time, rclpy
 rclpy.init()
 node = rclpy.create_node('site_graph')
-deadline = time.monotonic() + 20
-while not node.get_publishers_info_by_topic(sys.argv[1]) and time.monotonic() < deadline:
+deadline = time.monotonic() + 30
+while not (node.get_publishers_info_by_topic(sys.argv[1])
+           and node.get_subscriptions_info_by_topic(sys.argv[1])) \\
+        and time.monotonic() < deadline:
     time.sleep(0.1)
-time.sleep(2.0)  # the other endpoints of the participants it found
+time.sleep(3.0)  # the other endpoints of the participants it found
 print(json.dumps(sorted(f"{i.node_namespace.rstrip('/')}/{i.node_name}"
                         for i in node.get_subscriptions_info_by_topic(sys.argv[1]))))
 """
