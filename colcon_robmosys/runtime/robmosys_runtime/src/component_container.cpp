@@ -29,7 +29,6 @@
 
 #include <unistd.h>
 
-#include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -37,6 +36,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -323,6 +323,14 @@ struct Held
   std::weak_ptr<rclcpp_lifecycle::LifecycleNode> node;
 };
 
+/// Where a bring-down tells its steps: set once the bring-up is told.
+struct Steps
+{
+  static constexpr int not_up = -2;
+  std::mutex mutex;
+  int fd = not_up;
+};
+
 /// Deactivate, then clean up, the managed instances here, the last activated first.
 /**
  * What bringup does through the lifecycle services, done in this process (as
@@ -407,13 +415,19 @@ int main(int argc, char ** argv)
       }
     }
     // where the steps go once the bring-up is told (-1: nowhere); until then
-    // a Ctrl-C only shuts the nodes down, and a bring-down is done once
-    constexpr int not_up = -2;
-    auto steps = std::make_shared<std::atomic<int>>(not_up);
+    // a Ctrl-C only shuts the nodes down, and a bring-down is done once. The
+    // Ctrl-C is taken in rclcpp's signal thread: one that comes while the
+    // bring-up is told waits until it is, and then brings the instances down
+    // (it was taken for "not up" between the two, and told no step)
+    auto steps = std::make_shared<Steps>();
     rclcpp::contexts::get_global_default_context()->add_pre_shutdown_callback(
       [held, steps]() {
-        const int fd = steps->exchange(not_up);
-        if (fd != not_up) {
+        int fd = Steps::not_up;
+        {
+          std::lock_guard<std::mutex> lock(steps->mutex);
+          std::swap(fd, steps->fd);
+        }
+        if (fd != Steps::not_up) {
           bring_down(held, fd);
         }
         const auto finalized = lifecycle_msgs::msg::State::PRIMARY_STATE_FINALIZED;
@@ -425,8 +439,10 @@ int main(int argc, char ** argv)
         }
       });
     if (options.activate) {
-      tell(options, activate_in_order(options.instances, nodes));
-      steps->store(options.report_fd);
+      const auto states = activate_in_order(options.instances, nodes);
+      std::lock_guard<std::mutex> lock(steps->mutex);
+      tell(options, states);
+      steps->fd = options.report_fd;
     }
     nodes.clear();
     executor->add_node(container);
