@@ -158,20 +158,20 @@ def test_a_system_switched_between_its_modes_and_watched(test_workspace_built):
         report = _trigger(driver, 'report')
         assert report.success and report.message.splitlines()[0] == 'mode: docking', \
             report.message
-        reached = _listen(domain_id, listeners)
+        events = _listen(domain_id, listeners)
 
         # every direction: docking, cruising, mapping, each to each
-        steps = _switch(driver, 'cruising', reached)
+        steps = _switch(driver, 'cruising', events)
         assert steps == ['set driver: gain, rate', 'activate lidar', 'activate planner']
         _in_mode(driver, 'cruising')
-        steps = _switch(driver, 'mapping', reached)
+        steps = _switch(driver, 'mapping', events)
         # what goes, those that come last first; then the values; then what comes, in order
         assert steps == ['deactivate planner', 'deactivate lidar', 'set driver: gain, rate',
                          'set slam: rate', 'set arm.gripper: gain', 'set arm.wrist: rate',
                          'activate slam', 'activate arm.wrist'], steps
         _in_mode(driver, 'mapping')
         for mode in ('docking', 'mapping', 'cruising', 'docking'):
-            _switch(driver, mode, reached)
+            _switch(driver, mode, events)
             _in_mode(driver, mode)
         # the page's button for a mode asks the same switch, with the token only
         page = re.search(r'the page of the system: (http://[^/]+/)\?token=(\S+)',
@@ -192,8 +192,8 @@ def test_a_system_switched_between_its_modes_and_watched(test_workspace_built):
         # a participant that listens from now on: on Jazzy, the listener made before
         # did not discover the new process within 25 s under load (CI), while one made
         # after it discovers every participant there is as it starts
-        reached = _listen(domain_id, listeners)
-        _switch(driver, 'docking', reached)
+        events = _listen(domain_id, listeners)
+        _switch(driver, 'docking', events)
         _in_mode(driver, 'docking')
 
         # a switch asked for during another is refused, with the reason: the first
@@ -222,7 +222,7 @@ def test_a_system_switched_between_its_modes_and_watched(test_workspace_built):
         # the heartbeat that asked while slam held the switch said nothing of what
         # the switch did meanwhile (arm.wrist, activated right after slam)
         assert 'not active (heartbeat)' not in bringup.output(), bringup.output()
-        _switch(driver, 'docking', reached)
+        _switch(driver, 'docking', events)
         _in_mode(driver, 'docking')
 
         # the watch compares with the mode

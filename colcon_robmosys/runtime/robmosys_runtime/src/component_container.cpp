@@ -422,10 +422,10 @@ int main(int argc, char ** argv)
     auto steps = std::make_shared<Steps>();
     rclcpp::contexts::get_global_default_context()->add_pre_shutdown_callback(
       [held, steps]() {
-        int fd = Steps::not_up;
+        int fd;
         {
           std::lock_guard<std::mutex> lock(steps->mutex);
-          std::swap(fd, steps->fd);
+          fd = std::exchange(steps->fd, Steps::not_up);
         }
         if (fd != Steps::not_up) {
           bring_down(held, fd);
