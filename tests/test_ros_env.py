@@ -4,6 +4,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 from pathlib import Path
 import socket
@@ -61,7 +62,7 @@ def test_loopback_env_sets_the_variables(tmp_path: Path) -> None:
     prefix = str(ros_env.ros_prefix())
     assert env['ROS_DOMAIN_ID'] == '42'
     assert env['RMW_IMPLEMENTATION'] == 'rmw_fastrtps_cpp'
-    assert env['ROS_AUTOMATIC_DISCOVERY_RANGE'] == 'LOCALHOST'
+    assert env['ROS_AUTOMATIC_DISCOVERY_RANGE'] == 'SYSTEM_DEFAULT'
     assert Path(env['FASTDDS_DEFAULT_PROFILES_FILE']).is_file()
     assert 'ROS_LOCALHOST_ONLY' not in env
     assert env['AMENT_PREFIX_PATH'].split(os.pathsep) == [str(tmp_path), prefix, '/opt/other']
@@ -149,9 +150,85 @@ def test_publisher_reaches_subscriber_on_loopback() -> None:
     with ros_env.background([sys.executable, '-c', PUBLISHER], env=env) as talker:
         listener = ros_env.run([sys.executable, '-c', SUBSCRIBER, '20'], env=env, timeout=60)
         talker_output = talker.output()
+        addresses = _udp_addresses(talker.proc.pid)
+        shared = _shared_memory(talker.proc.pid)
 
     output = listener.stdout + listener.stderr + talker_output
     assert listener.returncode == 0, output
     assert 'received hello' in listener.stdout
     # Fast DDS reports a profile it cannot parse but carries on with defaults.
     assert 'XMLPARSER' not in output and 'XMLPROFILES' not in output, output
+    # DDS of the tests stays on loopback: every socket the talker bound is on
+    # 127.0.0.1 (or a multicast group, joined on 127.0.0.1 alone), and no shared
+    # memory segment of Fast DDS is mapped, which a process killed could leave behind
+    # for a later one to crash on (rmw_fastrtps adds both at LOCALHOST, see ros_env)
+    assert addresses and all(a == '127.0.0.1' or _multicast(a) for a in addresses), addresses
+    assert not shared, shared
+
+
+# Prints how many nodes it saw (all of them, or at its deadline), then stays in the
+# graph until its stdin closes, so that the others can see it as long as they look.
+_PEER = """
+import sys, time, rclpy
+rclpy.init()
+node = rclpy.create_node(f'peer_{sys.argv[1]}')
+deadline = time.monotonic() + float(sys.argv[3])
+while len(node.get_node_names()) < int(sys.argv[2]) and time.monotonic() < deadline:
+    rclpy.spin_once(node, timeout_sec=0.1)
+print(len(node.get_node_names()), flush=True)
+sys.stdin.read()
+"""
+
+
+def test_every_process_of_a_domain_sees_every_other() -> None:
+    # Fast DDS sends its first announcements to the initial peer's ports of
+    # participants 0 to 3 only, unless told more (the profile): the fifth process
+    # of a system and those after it then never saw each other
+    pytest.importorskip('rclpy', reason='ROS 2 (rclpy) is not installed in this interpreter')
+    env = ros_env.loopback_env(ros_env.free_domain_id())
+    count = 8
+    peers = [subprocess.Popen([sys.executable, '-c', _PEER, str(i), str(count), '30'], env=env,
+                              stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+             for i in range(count)]
+    try:
+        seen = [int(peer.stdout.readline() or 0) for peer in peers]
+    finally:
+        for peer in peers:
+            peer.stdin.close()
+        for peer in peers:
+            try:
+                peer.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                peer.kill()
+                peer.wait()
+    assert seen == [count] * count, seen
+
+
+def _udp_addresses(pid: int) -> set[str]:
+    """Return the local IPv4 and IPv6 addresses of process pid's UDP sockets."""
+    inodes = set()
+    for fd in Path(f'/proc/{pid}/fd').iterdir():
+        with contextlib.suppress(OSError):
+            target = os.readlink(fd)
+            if target.startswith('socket:['):
+                inodes.add(target[len('socket:['):-1])
+    addresses = set()
+    for table, family in (('udp', socket.AF_INET), ('udp6', socket.AF_INET6)):
+        lines = Path(f'/proc/{pid}/net/{table}').read_text().splitlines()[1:]
+        for fields in (line.split() for line in lines):
+            if fields[9] in inodes:
+                # the address is hex of its bytes in host (little-endian) order, per 32 bits
+                packed = bytes.fromhex(fields[1].split(':')[0])
+                raw = b''.join(packed[i:i + 4][::-1] for i in range(0, len(packed), 4))
+                addresses.add(socket.inet_ntop(family, raw))
+    return addresses
+
+
+def _multicast(address: str) -> bool:
+    return 224 <= int(address.split('.')[0]) <= 239 if '.' in address else False
+
+
+def _shared_memory(pid: int) -> set[str]:
+    """Return the Fast DDS segments in /dev/shm that process pid maps."""
+    maps = Path(f'/proc/{pid}/maps').read_text().splitlines()
+    return {line.split()[-1] for line in maps if '/dev/shm/fastdds' in line}

@@ -27,6 +27,13 @@ from typing import Any, IO
 Command = Sequence[str | os.PathLike[str]]
 
 FASTDDS_PROFILE: Path = Path(__file__).resolve().parent / 'fastdds_loopback.xml'
+#: ``ROS_AUTOMATIC_DISCOVERY_RANGE`` of every process here: the profile alone keeps DDS
+#: on loopback. ``LOCALHOST`` would not: rmw_fastrtps (Jazzy and Kilted) then adds a
+#: shared memory transport and a UDPv4 transport on every interface to the profile's,
+#: so a process binds 0.0.0.0 and the machine's own addresses, and the shared memory
+#: that processes killed on purpose leave in /dev/shm can crash a later one (the
+#: profile says more). ``SYSTEM_DEFAULT`` leaves the participant as the profile made it.
+DISCOVERY_RANGE = 'SYSTEM_DEFAULT'
 
 # Variables that would widen discovery beyond this machine or replace our profile.
 _NON_LOCAL = (
@@ -88,7 +95,7 @@ def loopback_env(domain_id: int, base: Mapping[str, str] | None = None,
     env.update({
         'FASTDDS_DEFAULT_PROFILES_FILE': str(FASTDDS_PROFILE),
         'RMW_IMPLEMENTATION': 'rmw_fastrtps_cpp',
-        'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST',
+        'ROS_AUTOMATIC_DISCOVERY_RANGE': DISCOVERY_RANGE,
         'ROS_DOMAIN_ID': str(domain_id),
         'PYTHONUNBUFFERED': '1',
         'RCUTILS_COLORIZED_OUTPUT': '0',

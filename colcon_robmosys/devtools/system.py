@@ -12,7 +12,7 @@ import os
 import time
 from typing import Any, Callable
 
-from colcon_robmosys.devtools.ros_env import FASTDDS_PROFILE
+from colcon_robmosys.devtools.ros_env import DISCOVERY_RANGE, FASTDDS_PROFILE
 
 
 def wait_until(condition: Callable[[], bool], timeout: float, period: float = 0.1) -> bool:
@@ -74,7 +74,7 @@ class LifecycleDriver:
     def __init__(self, domain_id: int) -> None:
         # DDS reads its profile when the participant is created, so set it first
         os.environ['FASTDDS_DEFAULT_PROFILES_FILE'] = str(FASTDDS_PROFILE)
-        os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
+        os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = DISCOVERY_RANGE
         os.environ['RMW_IMPLEMENTATION'] = 'rmw_fastrtps_cpp'
         import rclpy
         from rclpy.context import Context
