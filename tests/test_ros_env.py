@@ -5,6 +5,7 @@
 from __future__ import annotations
 
 import contextlib
+import ipaddress
 import os
 from pathlib import Path
 import socket
@@ -225,7 +226,9 @@ def _udp_addresses(pid: int) -> set[str]:
 
 
 def _multicast(address: str) -> bool:
-    return 224 <= int(address.split('.')[0]) <= 239 if '.' in address else False
+    """Return whether address is an IPv4 multicast group."""
+    group = ipaddress.ip_address(address)
+    return group.version == 4 and group.is_multicast
 
 
 def _shared_memory(pid: int) -> set[str]:
